@@ -1,0 +1,25 @@
+// Benchmarks reachable from the command line (`cgdem bench ...`). They print figures and
+// never pass or fail on time; the last line of each is "<name>: <number>".
+#pragma once
+#include <string>
+
+namespace cgdem::bench {
+
+// Dense-bed DEM benchmark (shared/bench/dem_bed/README.md).
+struct DemBenchArgs {
+  std::string bed;       // CSV x,y,z,d in metres
+  long steps = 2000;
+  int threads = 1;
+};
+int run_dem_bench(const DemBenchArgs& args);
+
+// Pressure solve on the die-filling grid with a packed-bed coefficient field.
+struct PressureBenchArgs {
+  int nx = 140, ny = 70, nz = 50;
+  int threads = 2;
+  int repeats = 5;
+  bool with_cholmod = true;   // the direct solve is slow (~30 s): can be switched off
+};
+int run_pressure_bench(const PressureBenchArgs& args);
+
+}  // namespace cgdem::bench

@@ -1,0 +1,13 @@
+# Writes the git revision (and a dirty flag) into a header; rewritten only when it changes.
+execute_process(COMMAND git -C ${SRC} describe --always --dirty --abbrev=12
+                OUTPUT_VARIABLE rev OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+if(NOT rev)
+  set(rev "unknown")
+endif()
+set(text "#pragma once\nnamespace cgdem { inline constexpr const char* kGitRevision = \"${rev}\"; }\n")
+if(EXISTS ${OUT})
+  file(READ ${OUT} old)
+endif()
+if(NOT "${old}" STREQUAL "${text}")
+  file(WRITE ${OUT} "${text}")
+endif()

@@ -1,0 +1,110 @@
+// Reading a case file (TOML, SI units) into typed values with validation.
+//
+// A Config owns the parsed document. Sections hand out typed values by key; every key
+// that is read is marked used, and defaults that were applied are written back into the
+// document, so that after parsing
+//   * check_unused() rejects any key nobody asked for (typos never pass silently), and
+//   * resolved_toml() is the complete configuration the run actually used.
+// Every error names the file, the full key path and what was expected.
+#pragma once
+#include <cmath>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/vec3.hpp"
+
+namespace cgdem {
+
+// Allowed interval for a number; open or closed at each end.
+struct Range {
+  double lo = -INFINITY, hi = INFINITY;
+  bool lo_open = false, hi_open = false;
+  static Range positive() { return {0.0, INFINITY, true, false}; }
+  static Range non_negative() { return {0.0, INFINITY, false, false}; }
+  static Range closed(double a, double b) { return {a, b, false, false}; }
+  static Range open_closed(double a, double b) { return {a, b, true, false}; }
+  static Range at_least(double a) { return {a, INFINITY, false, false}; }
+  static Range any() { return {}; }
+  bool contains(double v) const;
+  std::string describe() const;
+};
+
+class Config;
+
+// A view on one table of the document (the root or a nested section).
+class Section {
+ public:
+  Section(Config* cfg, std::string path) : cfg_(cfg), path_(std::move(path)) {}
+
+  const std::string& path() const { return path_; }
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const;
+
+  // Required values (error if missing or of the wrong type or out of range).
+  double number(const std::string& key, Range r = Range::any()) const;
+  long integer(const std::string& key, Range r = Range::any()) const;
+  bool boolean(const std::string& key) const;
+  std::string string(const std::string& key, const std::vector<std::string>& choices = {}) const;
+  Vec3 vec3(const std::string& key) const;
+  std::vector<double> numbers(const std::string& key, Range r = Range::any()) const;
+
+  // Optional values: the default is applied and recorded in the resolved configuration.
+  double number_or(const std::string& key, double def, Range r = Range::any()) const;
+  long integer_or(const std::string& key, long def, Range r = Range::any()) const;
+  bool boolean_or(const std::string& key, bool def) const;
+  std::string string_or(const std::string& key, const std::string& def,
+                        const std::vector<std::string>& choices = {}) const;
+  Vec3 vec3_or(const std::string& key, Vec3 def) const;
+  std::vector<double> numbers_or(const std::string& key, std::vector<double> def,
+                                 Range r = Range::any()) const;
+
+  // Sub-tables and arrays of tables.
+  Section section(const std::string& key) const;                  // required
+  std::optional<Section> optional_section(const std::string& key) const;
+  std::vector<Section> sections(const std::string& key) const;    // [[key]]; empty if absent
+
+  // Raise a ConfigError about `key` of this section.
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+ private:
+  Config* cfg_;
+  std::string path_;
+};
+
+class Config {
+ public:
+  // Parse a file; throws ConfigError with the parser's message on a syntax error.
+  static Config from_file(const std::string& filename);
+  static Config from_string(const std::string& text, const std::string& name = "<string>");
+  Config(Config&&) noexcept;
+  Config& operator=(Config&&) noexcept;
+  ~Config();
+
+  // `--set a.b.c=value`: value is parsed as TOML (number, bool, array, quoted string);
+  // anything that does not parse is taken as a bare string.
+  void apply_override(const std::string& assignment);
+
+  Section root() { return Section(this, ""); }
+  const std::string& filename() const { return filename_; }
+
+  // Throws ConfigError listing every key that was never read.
+  void check_unused() const;
+  // The configuration with defaults filled in, as TOML text.
+  std::string resolved_toml() const;
+
+ private:
+  friend class Section;
+  Config();
+  struct Doc;
+  std::unique_ptr<Doc> doc_;
+  std::string filename_;
+  std::set<std::string> used_;
+};
+
+}  // namespace cgdem
