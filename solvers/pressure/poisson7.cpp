@@ -1,0 +1,202 @@
+// 7-point operator A = -div(a grad .) on the cell-centred grid; see poisson7.hpp.
+#include "solvers/pressure/poisson7.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace cgdem::pressure {
+
+namespace {
+constexpr long kBlock = 4096;  // fixed reduction blocks: sums independent of the thread count
+
+void check_size(const std::vector<double>& a, long want, const char* name) {
+  if (static_cast<long>(a.size()) != want)
+    throw Error(std::string("pressure: face coefficient array ") + name + " has " +
+                std::to_string(a.size()) + " entries, expected " + std::to_string(want));
+  for (double v : a)
+    if (!(v >= 0.0) || !std::isfinite(v))
+      throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
+}
+
+int find_root(std::vector<int>& parent, int c) {
+  while (parent[c] != c) {
+    parent[c] = parent[parent[c]];
+    c = parent[c];
+  }
+  return c;
+}
+void unite(std::vector<int>& parent, int a, int b) {
+  a = find_root(parent, a);
+  b = find_root(parent, b);
+  if (a != b) parent[a < b ? b : a] = a < b ? a : b;  // smaller index is the root
+}
+}  // namespace
+
+double dot(const double* a, const double* b, long n) {
+  const long nb = (n + kBlock - 1) / kBlock;
+  std::vector<double> part(nb);
+#pragma omp parallel for schedule(static)
+  for (long blk = 0; blk < nb; ++blk) {
+    const long lo = blk * kBlock, hi = std::min(n, lo + kBlock);
+    double s = 0;
+    for (long i = lo; i < hi; ++i) s += a[i] * b[i];
+    part[blk] = s;
+  }
+  double s = 0;
+  for (double p : part) s += p;
+  return s;
+}
+
+Poisson7::Poisson7(const GridSpec& g) : g_(g) {
+  if (g.nx < 1 || g.ny < 1 || g.nz < 1)
+    throw Error("pressure: grid needs nx, ny, nz >= 1 (got " + std::to_string(g.nx) + "x" +
+                std::to_string(g.ny) + "x" + std::to_string(g.nz) + ")");
+  if (!(g.dx > 0) || !(g.dy > 0) || !(g.dz > 0)) throw Error("pressure: grid spacings must be > 0");
+  for (int ax = 0; ax < 3; ++ax) {
+    const bool lo = g.bc[2 * ax] == Boundary::Periodic, hi = g.bc[2 * ax + 1] == Boundary::Periodic;
+    if (lo != hi) throw Error("pressure: a Periodic boundary needs both sides of its axis Periodic");
+  }
+}
+
+void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
+                   const std::vector<double>& az) {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  check_size(ax, long(nx + 1) * ny * nz, "ax");
+  check_size(ay, long(nx) * (ny + 1) * nz, "ay");
+  check_size(az, long(nx) * ny * (nz + 1), "az");
+  const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy), hz = 1 / (g_.dz * g_.dz);
+  wx_.assign(ax.size(), 0.0);
+  wy_.assign(ay.size(), 0.0);
+  wz_.assign(az.size(), 0.0);
+  diag_.assign(n(), 0.0);
+  open_.assign(n(), 0.0);
+  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
+  const auto& bc = g_.bc;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i <= nx; ++i) {  // x faces: interior, wrap (face 0) or boundary
+        const long f = i + long(nx + 1) * (j + long(ny) * k);
+        const long cl = (i - 1) + long(nx) * (j + long(ny) * k), cr = cl + 1;
+        const double w = ax[f] * hx;
+        if (i > 0 && i < nx) { wx_[f] = w; diag_[cl] += w; diag_[cr] += w; }
+        else if (px) { if (i == 0) { wx_[f] = w; diag_[cr] += w; diag_[cr + nx - 1] += w; } }
+        else if (i == 0 && bc[0] == Boundary::Open) open_[cr] += 2 * w;
+        else if (i == nx && bc[1] == Boundary::Open) open_[cl] += 2 * w;
+      }
+    }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const long f = i + long(nx) * (j + long(ny + 1) * k);
+        const long cs = i + long(nx) * ((j - 1) + long(ny) * k), cn = cs + nx;
+        const double w = ay[f] * hy;
+        if (j > 0 && j < ny) { wy_[f] = w; diag_[cs] += w; diag_[cn] += w; }
+        else if (py) { if (j == 0) { wy_[f] = w; diag_[cn] += w; diag_[cn + long(nx) * (ny - 1)] += w; } }
+        else if (j == 0 && bc[2] == Boundary::Open) open_[cn] += 2 * w;
+        else if (j == ny && bc[3] == Boundary::Open) open_[cs] += 2 * w;
+      }
+  const long plane = long(nx) * ny;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const long f = i + long(nx) * (j + long(ny) * k);
+        const long cb = f - plane, ct = f;
+        const double w = az[f] * hz;
+        if (k > 0 && k < nz) { wz_[f] = w; diag_[cb] += w; diag_[ct] += w; }
+        else if (pz) { if (k == 0) { wz_[f] = w; diag_[ct] += w; diag_[ct + plane * (nz - 1)] += w; } }
+        else if (k == 0 && bc[4] == Boundary::Open) open_[ct] += 2 * w;
+        else if (k == nz && bc[5] == Boundary::Open) open_[cb] += 2 * w;
+      }
+  for (long c = 0; c < n(); ++c) diag_[c] += open_[c];
+  label_components();
+}
+
+void Poisson7::label_components() {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const long N = n();
+  std::vector<int> parent(N);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const long c = i + long(nx) * (j + long(ny) * k);
+        const long fx = i + long(nx + 1) * (j + long(ny) * k);
+        const long fy = i + long(nx) * (j + long(ny + 1) * k);
+        if (wx_[fx] > 0) unite(parent, c, i > 0 ? c - 1 : c + nx - 1);
+        if (wy_[fy] > 0) unite(parent, c, j > 0 ? c - nx : c + long(nx) * (ny - 1));
+        if (wz_[c] > 0) unite(parent, c, k > 0 ? c - long(nx) * ny : c + long(nx) * ny * (nz - 1));
+      }
+  std::vector<char> grounded(N, 0);
+  for (long c = 0; c < N; ++c)
+    if (open_[c] > 0) grounded[find_root(parent, c)] = 1;
+  std::vector<int> id_of_root(N, -1);
+  comp_.assign(N, -1);
+  comp_count_.clear();
+  n_floating_ = 0;
+  for (long c = 0; c < N; ++c) {
+    const int r = find_root(parent, c);
+    if (grounded[r]) continue;
+    if (id_of_root[r] < 0) {
+      id_of_root[r] = n_floating_++;
+      comp_count_.push_back(0.0);
+    }
+    comp_[c] = id_of_root[r];
+    comp_count_[comp_[c]] += 1.0;
+  }
+}
+
+void Poisson7::project_floating(double* v) const {
+  if (n_floating_ == 0) return;
+  std::vector<double> sum(n_floating_, 0.0);
+  const long N = n();
+  for (long c = 0; c < N; ++c)
+    if (comp_[c] >= 0) sum[comp_[c]] += v[c];
+  for (int q = 0; q < n_floating_; ++q) sum[q] /= comp_count_[q];
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < N; ++c)
+    if (comp_[c] >= 0) v[c] -= sum[comp_[c]];
+}
+
+void Poisson7::apply(const double* x, double* y) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
+  const long plane = long(nx) * ny;
+#pragma omp parallel for collapse(2) schedule(static)
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      const long c0 = long(nx) * (j + long(ny) * k);
+      const double* xr = x + c0;
+      double* yr = y + c0;
+      const double* d = diag_.data() + c0;
+      const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
+      // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
+      const double* xs = (j > 0) ? xr - nx : (py ? xr + long(nx) * (ny - 1) : xr);
+      const double* xn = (j < ny - 1) ? xr + nx : (py ? xr - long(nx) * (ny - 1) : xr);
+      const double* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
+      const double* wn = wy_.data() + long(nx) * ((j == ny - 1 && py ? 0 : j + 1) + long(ny + 1) * k);
+      const double* xb = (k > 0) ? xr - plane : (pz ? xr + plane * (nz - 1) : xr);
+      const double* xt = (k < nz - 1) ? xr + plane : (pz ? xr - plane * (nz - 1) : xr);
+      const double* wb = wz_.data() + c0;
+      const double* wt = wz_.data() + (k == nz - 1 && pz ? long(nx) * j : c0 + plane);
+      for (int i = 0; i < nx; ++i)
+        yr[i] = d[i] * xr[i] - ws[i] * xs[i] - wn[i] * xn[i] - wb[i] * xb[i] - wt[i] * xt[i];
+      for (int i = 1; i < nx; ++i) yr[i] -= wxr[i] * xr[i - 1];
+      for (int i = 0; i < nx - 1; ++i) yr[i] -= wxr[i + 1] * xr[i + 1];
+      if (px) {  // wrap face 0 joins cell nx-1 and cell 0
+        yr[0] -= wxr[0] * xr[nx - 1];
+        yr[nx - 1] -= wxr[0] * xr[0];
+      }
+    }
+}
+
+void Poisson7::residual(const double* b, const double* x, double* r) const {
+  apply(x, r);
+  const long N = n();
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < N; ++c) r[c] = b[c] - r[c];
+}
+
+}  // namespace cgdem::pressure

@@ -1,0 +1,70 @@
+// The 7-point variable-coefficient operator of pressure_solver.hpp, in SPD form:
+//
+//     (A phi)_c = sum_f w_f (phi_c - phi_nb(f)) + sum_{open f} 2 w_f phi_c ,   w_f = a_f / h_f^2,
+//
+// i.e. A = -div(a grad .), so div(a grad phi) = rhs  <=>  A phi = -rhs.  On an Open face the
+// ghost value is -phi_c (phi = 0 on the face), which gives the 2 w_f phi_c term; Wall faces carry
+// nothing; the Periodic wrap face of an axis is face 0 of that axis.
+//
+// Connectivity: cells joined by faces with w_f > 0 form components. A component with no Open face
+// of positive coefficient is "floating": A is singular on it (constant null vector). Solvers make
+// the right-hand side mean-free on each floating component and return phi mean-free on it
+// (project_floating); a cell whose faces are all blocked is a floating component of one cell and
+// gets phi = 0.
+//
+// Reads: GridSpec and the face coefficients given to set(). Writes: only its own arrays.
+#pragma once
+#include <vector>
+
+#include "solvers/pressure/pressure_solver.hpp"
+
+namespace cgdem::pressure {
+
+class Poisson7 {
+ public:
+  explicit Poisson7(const GridSpec& g);  // validates the grid (throws cgdem::Error)
+
+  // Face coefficients a >= 0 in the MAC layout of pressure_solver.hpp (throws on size/sign).
+  void set(const std::vector<double>& ax, const std::vector<double>& ay, const std::vector<double>& az);
+
+  // y = A x (both of length cells()); OpenMP over (j,k) rows, result independent of threads.
+  void apply(const double* x, double* y) const;
+  // r = b - A x
+  void residual(const double* b, const double* x, double* r) const;
+  // Subtract, on every floating component, its mean (deterministic serial sums).
+  void project_floating(double* v) const;
+
+  const GridSpec& grid() const { return g_; }
+  long n() const { return g_.cells(); }
+  const std::vector<double>& diag() const { return diag_; }
+  // Weights w = a/h^2 on faces (MAC layout; non-periodic boundary faces hold 0, the periodic
+  // wrap face is face 0). Open-face weights are in open_x/y/z (0 unless the side is Open).
+  const std::vector<double>& wx() const { return wx_; }
+  const std::vector<double>& wy() const { return wy_; }
+  const std::vector<double>& wz() const { return wz_; }
+  // 2 w_f of the Open boundary faces, summed per cell (already included in diag()).
+  const std::vector<double>& open_diag() const { return open_; }
+  bool singular() const { return n_floating_ > 0; }
+  int floating_components() const { return n_floating_; }
+  // Component id of a floating cell, -1 for a grounded cell.
+  const std::vector<int>& floating_id() const { return comp_; }
+  bool periodic(int axis) const { return g_.bc[2 * axis] == Boundary::Periodic; }
+
+ private:
+  void label_components();
+
+  GridSpec g_;
+  std::vector<double> wx_, wy_, wz_, diag_, open_;
+  std::vector<int> comp_;
+  std::vector<double> comp_count_;
+  int n_floating_ = 0;
+};
+
+// Deterministic helpers on plain arrays (fixed blocking: sums do not depend on thread count).
+double dot(const double* a, const double* b, long n);
+inline double norm2(const double* a, long n);
+
+}  // namespace cgdem::pressure
+
+#include <cmath>
+inline double cgdem::pressure::norm2(const double* a, long n) { return std::sqrt(dot(a, a, n)); }

@@ -1,0 +1,15 @@
+// make_pressure_solver: the method registry of pressure_solver.hpp.
+#include "solvers/pressure/pressure_solver.hpp"
+
+#include "core/error.hpp"
+#include "solvers/pressure/krylov_solver.hpp"
+
+namespace cgdem::pressure {
+
+std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const SolverOptions& opt) {
+  if (opt.method == "cg") return std::make_unique<KrylovSolver>(grid, opt, nullptr);
+  throw Error("pressure: unknown solver method '" + opt.method +
+              "' (known: cg, pcg-fft, pcg-mg, cholmod)");
+}
+
+}  // namespace cgdem::pressure
