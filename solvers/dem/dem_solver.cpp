@@ -1,0 +1,113 @@
+#include "solvers/dem/dem_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace cgdem {
+
+DemSolver::DemSolver(std::vector<Species> species, const MaterialParams& material, const DemParams& params,
+                     geometry::Scene scene)
+    : species_(std::move(species)),
+      table_(species_, material),
+      params_(params),
+      scene_(std::move(scene)) {
+  if (params_.skin <= 0) {
+    double dmax = 0;
+    for (const auto& s : species_) dmax = std::max(dmax, s.diameter());
+    params_.skin = 0.1 * dmax;
+  }
+  nl_.skin = params_.skin;
+  t_kick_ = timers_.id("integrate");
+  t_neigh_ = timers_.id("neighbour lists");
+  t_force_ = timers_.id("contact forces");
+  t_drift_ = timers_.id("integrate");
+}
+
+void DemSolver::kick(double h) {
+  const int n = static_cast<int>(p_.size());
+#pragma omp parallel for schedule(static) if (n >= 512)
+  for (int i = 0; i < n; ++i) {
+    p_.v[i] += (h * p_.inv_mass[i]) * p_.force[i];
+    p_.omega[i] += (h * p_.inv_inertia[i]) * p_.torque[i];
+  }
+}
+
+void DemSolver::drift() {
+  const int n = static_cast<int>(p_.size());
+  const double dt = params_.dt;
+#pragma omp parallel for schedule(static) if (n >= 512)
+  for (int i = 0; i < n; ++i) p_.x[i] += dt * p_.v[i];
+}
+
+void DemSolver::remove_escaped() {
+  std::vector<int> keep;
+  keep.reserve(p_.size());
+  for (size_t i = 0; i < p_.size(); ++i) {
+    if (params_.domain.contains(p_.x[i])) {
+      keep.push_back(static_cast<int>(i));
+    } else {
+      removed_damping_ += p_.e_damping[i];
+      removed_friction_ += p_.e_friction[i];
+      removed_walls_ += p_.w_walls[i];
+      ++removed_;
+    }
+  }
+  if (keep.size() != p_.size()) {
+    p_.reorder(keep);
+    nl_.offset.clear();  // indices changed: history cannot be matched (lost particles only)
+  }
+}
+
+void DemSolver::rebuild_if_needed() {
+  auto scope = timers_.scope(t_neigh_);
+  if (!nl_.needs_rebuild(p_, frame_)) return;
+  remove_escaped();
+  nl_.build(p_, frame_);
+}
+
+void DemSolver::step() {
+  const double dt = params_.dt;
+  if (!forces_valid_) {  // first step (or particles were added): forces at x^n
+    frame_ = scene_.at(t_);
+    nl_.offset.clear();
+    {
+      auto scope = timers_.scope(t_neigh_);
+      remove_escaped();
+      nl_.build(p_, frame_);
+    }
+    compute_forces();
+    forces_valid_ = true;
+  }
+  {
+    auto scope = timers_.scope(t_kick_);
+    kick(0.5 * dt);
+    drift();
+  }
+  t_ += dt;
+  ++steps_;
+  frame_ = scene_.at(t_);
+  rebuild_if_needed();
+  compute_forces();
+  auto scope = timers_.scope(t_kick_);
+  kick(0.5 * dt);
+}
+
+long DemSolver::contact_count() const {
+  long c = 0;
+  for (size_t i = 0; i < p_.size(); ++i) {
+    for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
+      int j = nl_.partner[e];
+      double r = p_.radius[i] + p_.radius[j];
+      if (static_cast<int>(i) < j && norm2(p_.x[i] - p_.x[j]) < r * r) ++c;
+    }
+    for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e)
+      if (frame_.part_distance(nl_.wall_part[e], p_.x[i]) < p_.radius[i]) ++c;
+  }
+  return c;
+}
+
+}  // namespace cgdem

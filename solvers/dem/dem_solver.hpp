@@ -1,0 +1,99 @@
+// The coarse-grained DEM time stepper (paper eqs. 1-7, 15-17).
+//
+// One step of velocity Verlet (translation and rotation of spheres):
+//   v^{n+1/2} = v^n + dt/2 F^n/m,      w^{n+1/2} = w^n + dt/2 T^n/I
+//   x^{n+1}   = x^n + dt v^{n+1/2}
+//   rebuild neighbour lists if some particle (or wall) moved more than skin/2
+//   F^{n+1}   = contacts(x^{n+1}, v^{n+1/2}, w^{n+1/2}) + walls + m g + f_ext
+//   v^{n+1}   = v^{n+1/2} + dt/2 F^{n+1}/m,  w^{n+1} likewise.
+// Contact forces follow contact_law.hpp with the pair parameters of ContactTable;
+// particle-wall contacts use each wall part's signed distance (eq. 16) and the wall's own
+// velocity in the relative velocity.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "contact/contact_table.hpp"
+#include "core/timers.hpp"
+#include "geometry/scene.hpp"
+#include "particles/neighbor_list.hpp"
+#include "particles/particles.hpp"
+
+namespace cgdem {
+
+struct DemParams {
+  double dt = 1e-6;           // [s]
+  Vec3 gravity{0, 0, -9.81};  // [m/s^2]
+  double skin = 0;            // neighbour skin [m]; 0 -> 0.1 x largest diameter
+  geometry::Aabb domain;      // particles leaving it are removed and counted
+};
+
+// Totals over all particles (and those removed), summed in a fixed order.
+struct EnergyBudget {
+  double kinetic_translational = 0, kinetic_rotational = 0, potential = 0;
+  double elastic = 0;              // stored in contact springs (normal + tangential)
+  double dissipated_damping = 0;   // by the normal dashpots, since t = start
+  double dissipated_friction = 0;  // tangential dashpot and sliding
+  double work_walls = 0;           // done on the particles by moving walls
+  Vec3 momentum;
+  double mass = 0;
+  // Should stay constant: E_kin + E_pot + E_el + dissipated - wall work.
+  double balance() const {
+    return kinetic_translational + kinetic_rotational + potential + elastic + dissipated_damping +
+           dissipated_friction - work_walls;
+  }
+};
+
+class DemSolver {
+ public:
+  DemSolver(std::vector<Species> species, const MaterialParams& material, const DemParams& params,
+            geometry::Scene scene);
+
+  // Particles are added before the first step (or between steps; the lists are rebuilt).
+  Particles& particles() { return p_; }
+  const Particles& particles() const { return p_; }
+  const std::vector<Species>& species() const { return species_; }
+  const geometry::Scene& scene() const { return scene_; }
+  const ContactTable& contacts() const { return table_; }
+  const DemParams& params() const { return params_; }
+
+  void set_time(double t) { t_ = t; }
+  double time() const { return t_; }
+  long steps() const { return steps_; }
+  void step();
+
+  EnergyBudget energy() const;
+  long removed() const { return removed_; }      // particles that left the domain
+  long neighbor_builds() const { return nl_.builds; }
+  size_t pair_entries() const { return nl_.pair_entries(); }
+  // Number of particle-particle contacts (pairs with overlap) and wall contacts.
+  long contact_count() const;
+  PhaseTimers& timers() { return timers_; }
+  // Smallest collision time over all species pairs and walls.
+  double min_collision_time() const { return table_.min_collision_time(); }
+
+ private:
+  void kick(double half_dt);
+  void drift();
+  void rebuild_if_needed();
+  void compute_forces();
+  void remove_escaped();
+
+  std::vector<Species> species_;
+  ContactTable table_;
+  DemParams params_;
+  geometry::Scene scene_;
+  geometry::Scene::Frame frame_;
+  Particles p_;
+  NeighborList nl_;
+  double t_ = 0;
+  long steps_ = 0;
+  long removed_ = 0;
+  bool forces_valid_ = false;
+  // Energy totals of particles that were removed (their per-particle accounts).
+  double removed_damping_ = 0, removed_friction_ = 0, removed_walls_ = 0;
+  PhaseTimers timers_;
+  int t_kick_, t_drift_, t_neigh_, t_force_;
+};
+
+}  // namespace cgdem

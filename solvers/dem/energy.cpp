@@ -1,0 +1,42 @@
+// Energy budget of the particle system (serial, fixed order: thread-count independent).
+//   E_kin = sum 1/2 m v^2 + 1/2 I w^2,   E_pot = - sum m g . x
+//   E_el  = sum over contacts 1/2 l^3 k (delta^2 + |xi|^2)
+#include "solvers/dem/dem_solver.hpp"
+
+namespace cgdem {
+
+EnergyBudget DemSolver::energy() const {
+  EnergyBudget b;
+  const Particles& p = p_;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const double m = 1.0 / p.inv_mass[i], I = 1.0 / p.inv_inertia[i];
+    b.kinetic_translational += 0.5 * m * norm2(p.v[i]);
+    b.kinetic_rotational += 0.5 * I * norm2(p.omega[i]);
+    b.potential -= m * dot(params_.gravity, p.x[i]);
+    b.momentum += m * p.v[i];
+    b.mass += m;
+    b.dissipated_damping += p.e_damping[i];
+    b.dissipated_friction += p.e_friction[i];
+    b.work_walls += p.w_walls[i];
+    if (nl_.offset.size() != p.size() + 1) continue;
+    for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
+      const int j = nl_.partner[e];
+      const double overlap = p.radius[i] + p.radius[j] - norm(p.x[i] - p.x[j]);
+      if (overlap <= 0) continue;
+      const auto& c = table_.pair(p.species[i], p.species[j]);
+      b.elastic += 0.25 * c.l3 * c.k * (overlap * overlap + norm2(nl_.xi[e]));  // half: seen from both sides
+    }
+    for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e) {
+      const double overlap = p.radius[i] - frame_.part_distance(nl_.wall_part[e], p.x[i]);
+      if (overlap <= 0) continue;
+      const auto& c = table_.wall(p.species[i]);
+      b.elastic += 0.5 * c.l3 * c.k * (overlap * overlap + norm2(nl_.wall_xi[e]));
+    }
+  }
+  b.dissipated_damping += removed_damping_;
+  b.dissipated_friction += removed_friction_;
+  b.work_walls += removed_walls_;
+  return b;
+}
+
+}  // namespace cgdem

@@ -1,0 +1,48 @@
+#include "particles/particles.hpp"
+
+namespace cgdem {
+
+void Particles::add(int64_t pid, int sp, const Species& s, const Vec3& pos, const Vec3& vel, const Vec3& w) {
+  id.push_back(pid);
+  species.push_back(sp);
+  x.push_back(pos);
+  v.push_back(vel);
+  omega.push_back(w);
+  force.emplace_back();
+  torque.emplace_back();
+  f_ext.emplace_back();
+  radius.push_back(0.5 * s.diameter());
+  inv_mass.push_back(1.0 / s.mass());
+  inv_inertia.push_back(1.0 / s.inertia());
+  e_damping.push_back(0);
+  e_friction.push_back(0);
+  w_walls.push_back(0);
+}
+
+namespace {
+template <class T>
+void apply(std::vector<T>& a, const std::vector<int>& order) {
+  std::vector<T> b(order.size());
+  for (size_t i = 0; i < order.size(); ++i) b[i] = a[order[i]];
+  a.swap(b);
+}
+}  // namespace
+
+void Particles::reorder(const std::vector<int>& order) {
+  apply(id, order);
+  apply(species, order);
+  apply(x, order);
+  apply(v, order);
+  apply(omega, order);
+  apply(force, order);
+  apply(torque, order);
+  apply(f_ext, order);
+  apply(radius, order);
+  apply(inv_mass, order);
+  apply(inv_inertia, order);
+  apply(e_damping, order);
+  apply(e_friction, order);
+  apply(w_walls, order);
+}
+
+}  // namespace cgdem

@@ -1,0 +1,31 @@
+// Particle storage: structure of arrays, one vector per field, indexed 0..size()-1.
+// Local indices change when the neighbour list re-sorts particles in space; `id` is the
+// stable identity (contact history, output and restarts use it).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+#include "particles/species.hpp"
+
+namespace cgdem {
+
+struct Particles {
+  std::vector<int64_t> id;
+  std::vector<int> species;
+  std::vector<Vec3> x, v, omega;   // position [m], velocity [m/s], angular velocity [1/s]
+  std::vector<Vec3> force, torque;  // accumulated in the force pass [N], [N m]
+  std::vector<Vec3> f_ext;          // external force set by a coupling (drag, pressure) [N]
+  std::vector<double> radius, inv_mass, inv_inertia;
+  // Running energy totals per particle (summed in a fixed order for diagnostics, so the
+  // result does not depend on the number of threads) [J].
+  std::vector<double> e_damping, e_friction, w_walls;
+
+  size_t size() const { return x.size(); }
+  void add(int64_t pid, int sp, const Species& s, const Vec3& pos, const Vec3& vel = {}, const Vec3& w = {});
+  // Reorder every field: new index i takes the particle at old index order[i]. Particles
+  // not listed in `order` are dropped.
+  void reorder(const std::vector<int>& order);
+};
+
+}  // namespace cgdem
