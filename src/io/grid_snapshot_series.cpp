@@ -1,0 +1,132 @@
+#include "io/grid_snapshot_series.hpp"
+
+#include <filesystem>
+#include <set>
+
+#include "io/atomic_file.hpp"
+#include "io/h5_util.hpp"
+
+namespace cgdem::io {
+
+GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume)
+    : dir_(std::move(dir)),
+      prefix_(std::move(prefix)),
+      attributes_(std::move(attributes)),
+      index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
+  check_series_name(prefix_, "grid snapshot prefix");
+  for (const char* k : {"time", "step"})
+    if (attributes_.count(k)) throw Error(std::string("grid snapshot attribute '") + k + "' is reserved");
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
+  if (resume)
+    for (int64_t s : find_snapshot_steps(dir_, prefix_)) index_.set(s, render(read_entry(s)));
+}
+
+std::string GridSnapshotSeries::snapshot_path(int64_t step) const {
+  return dir_ + "/" + snapshot_file_name(prefix_, step);
+}
+
+std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
+                                      const CellScalars& scalars, const CellVectors& vectors) {
+  const std::string path = snapshot_path(step);
+  if (nx < 1 || ny < 1 || nz < 1)
+    throw Error(path + ": grid must have at least one cell per direction, got " + std::to_string(nx) + "x" +
+                std::to_string(ny) + "x" + std::to_string(nz));
+  if (!(spacing.x > 0 && spacing.y > 0 && spacing.z > 0)) throw Error(path + ": grid spacing must be > 0");
+  const size_t ncell = static_cast<size_t>(nx) * ny * nz;
+  Entry e{step, time, {nx, ny, nz}, origin, spacing, {}, {}};
+  std::set<std::string> names;
+  auto check_field = [&](const std::string& name, size_t size) {
+    check_series_name(name, "grid field name");
+    if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
+    if (size != ncell)
+      throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
+                  std::to_string(ncell) + " cells");
+  };
+  for (const auto& [name, v] : scalars) check_field(name, v.size()), e.scalars.push_back(name);
+  for (const auto& [name, v] : vectors) {
+    for (const auto& comp : v) check_field(name, comp.size()), names.erase(name);
+    names.insert(name);
+    e.vectors.push_back(name);
+  }
+
+  const hsize_t Z = nz, Y = ny, X = nx;
+  AtomicTarget target(path);
+  {
+    h5::Id file = h5::create_file(target.tmp_path(), path);
+    for (const auto& [k, v] : attributes_) h5::write_attribute(file, k, v, path);
+    h5::write_attribute(file, "time", time, path);
+    h5::write_attribute(file, "step", step, path);
+    h5::Id grid = h5::create_group(file, "grid", path);
+    const int64_t n[3] = {nx, ny, nz};
+    const double o[3] = {origin.x, origin.y, origin.z}, h[3] = {spacing.x, spacing.y, spacing.z};
+    h5::write(grid, "n", {3}, n, path);
+    h5::write(grid, "origin", {3}, o, path);
+    h5::write(grid, "spacing", {3}, h, path);
+    h5::Id cells = h5::create_group(file, "cells", path);
+    for (const auto& [name, v] : scalars) h5::write(cells, name, {Z, Y, X}, v.data(), path);
+    std::vector<double> packed(3 * ncell);
+    for (const auto& [name, v] : vectors) {
+      for (size_t c = 0; c < ncell; ++c)
+        for (int k = 0; k < 3; ++k) packed[3 * c + k] = v[k][c];
+      h5::write(cells, name, {Z, Y, X, 3}, packed.data(), path);
+    }
+    cells.reset();
+    grid.reset();
+    file.close_checked("'" + path + "'");
+  }
+  target.commit();
+  index_.set(step, render(e));
+  index_.write();
+  return path;
+}
+
+GridSnapshotSeries::Entry GridSnapshotSeries::read_entry(int64_t step) const {
+  const std::string path = snapshot_path(step);
+  h5::Id file = h5::open_file(path);
+  Entry e;
+  e.step = step;
+  e.time = h5::read_double_attribute(file, "time", path);
+  std::vector<hsize_t> dims;
+  std::vector<int64_t> n = h5::read_int64(file, "grid/n", dims, path);
+  std::vector<double> o = h5::read_double(file, "grid/origin", dims, path);
+  std::vector<double> h = h5::read_double(file, "grid/spacing", dims, path);
+  if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error("HDF5 file '" + path + "': malformed /grid");
+  e.n = {n[0], n[1], n[2]};
+  e.origin = {o[0], o[1], o[2]};
+  e.spacing = {h[0], h[1], h[2]};
+  h5::Id cells(H5Gopen2(file, "cells", H5P_DEFAULT), H5Gclose);
+  if (cells.get() < 0) throw Error("HDF5 file '" + path + "': no group '/cells'");
+  for (const std::string& name : h5::members(cells, path)) {
+    h5::Id set(H5Dopen2(cells, name.c_str(), H5P_DEFAULT), H5Dclose);
+    h5::Id space(H5Dget_space(set), H5Sclose);
+    (H5Sget_simple_extent_ndims(space) == 4 ? e.vectors : e.scalars).push_back(name);
+  }
+  return e;
+}
+
+std::string GridSnapshotSeries::render(const Entry& e) const {
+  const std::string file = snapshot_file_name(prefix_, e.step);
+  const std::string cells = std::to_string(e.n[2]) + " " + std::to_string(e.n[1]) + " " + std::to_string(e.n[0]);
+  const std::string nodes =
+      std::to_string(e.n[2] + 1) + " " + std::to_string(e.n[1] + 1) + " " + std::to_string(e.n[0] + 1);
+  auto zyx = [](const Vec3& v) {
+    return xdmf::number(v.z) + " " + xdmf::number(v.y) + " " + xdmf::number(v.x);
+  };
+  const std::string xml3 = "<DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">";
+  std::string g = "   <Grid Name=\"step_" + std::to_string(e.step) + "\" GridType=\"Uniform\">\n";
+  g += "    <Time Value=\"" + xdmf::number(e.time) + "\"/>\n";
+  g += "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" + nodes + "\"/>\n";
+  g += "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
+  g += "     " + xml3 + zyx(e.origin) + "</DataItem>\n";
+  g += "     " + xml3 + zyx(e.spacing) + "</DataItem>\n";
+  g += "    </Geometry>\n";
+  for (const std::string& s : e.scalars)
+    g += xdmf::attribute(s, "Scalar", "Cell", xdmf::hdf_item(cells, "Float", 8, file, "/cells/" + s));
+  for (const std::string& v : e.vectors)
+    g += xdmf::attribute(v, "Vector", "Cell", xdmf::hdf_item(cells + " 3", "Float", 8, file, "/cells/" + v));
+  return g + "   </Grid>\n";
+}
+
+}  // namespace cgdem::io

@@ -1,0 +1,59 @@
+// GridSnapshotSeries: cell-centred fields on a uniform Cartesian mesh over time (air phase),
+// one HDF5 file per output step plus an XDMF index that ParaView opens directly.
+//
+// Mesh: nx*ny*nz cells of size spacing = (dx,dy,dz), lower corner at origin (m). Cell
+// (i,j,k) has flat index c = i + nx*(j + ny*k) (x fastest) in every field array.
+//   <dir>/<prefix>_<step:06>.h5  /grid/n int64[3] = (nx,ny,nz), /grid/origin, /grid/spacing
+//                                float64[3] (x,y,z order); /cells/<name> float64 [nz][ny][nx]
+//                                for scalars, [nz][ny][nx][3] for vectors (components x,y,z);
+//                                attributes on "/": series attributes + "time" + "step"
+//   <dir>/<prefix>.xdmf          temporal collection, 3DCoRectMesh topology with
+//                                (nz+1, ny+1, nx+1) nodes, ORIGIN_DXDYDZ geometry (XDMF lists
+//                                both triples slowest axis first: z, y, x), Center="Cell"
+//                                attributes.
+// Atomic writes and restart behaviour as SnapshotSeries.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/vec3.hpp"
+#include "io/particle_h5.hpp"
+#include "io/xdmf_series.hpp"
+
+namespace cgdem::io {
+
+using CellScalars = std::map<std::string, std::vector<double>>;
+using CellVectors = std::map<std::string, std::array<std::vector<double>, 3>>;  // x,y,z components
+
+class GridSnapshotSeries {
+ public:
+  GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume = false);
+
+  // Every array has nx*ny*nz values; names must be distinct across scalars and vectors.
+  std::string write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
+                    const CellScalars& scalars, const CellVectors& vectors = {});
+
+  const std::string& xdmf_path() const { return index_.path(); }
+  std::string snapshot_path(int64_t step) const;
+  std::vector<int64_t> steps() const { return index_.steps(); }
+
+ private:
+  struct Entry {
+    int64_t step = 0;
+    double time = 0;
+    std::array<int64_t, 3> n{};
+    Vec3 origin, spacing;
+    std::vector<std::string> scalars, vectors;
+  };
+  std::string render(const Entry& e) const;
+  Entry read_entry(int64_t step) const;
+
+  std::string dir_, prefix_;
+  Attributes attributes_;
+  XdmfTimeSeries index_;
+};
+
+}  // namespace cgdem::io

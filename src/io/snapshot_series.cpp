@@ -1,0 +1,102 @@
+#include "io/snapshot_series.hpp"
+
+#include <filesystem>
+
+#include "io/atomic_file.hpp"
+#include "io/h5_util.hpp"
+
+namespace cgdem::io {
+namespace {
+
+const char* const kReserved[] = {"velocity", "omega", "diameter", "id", "species"};
+
+}  // namespace
+
+SnapshotSeries::SnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume)
+    : dir_(std::move(dir)),
+      prefix_(std::move(prefix)),
+      attributes_(std::move(attributes)),
+      index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
+  check_series_name(prefix_, "snapshot prefix");
+  for (const char* k : {"time", "step"})
+    if (attributes_.count(k)) throw Error(std::string("snapshot attribute '") + k + "' is reserved");
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
+  if (resume)
+    for (int64_t s : find_snapshot_steps(dir_, prefix_)) index_.set(s, render(read_entry(s)));
+}
+
+std::string SnapshotSeries::snapshot_path(int64_t step) const {
+  return dir_ + "/" + snapshot_file_name(prefix_, step);
+}
+
+std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable& table, const ScalarFields& extra) {
+  const std::string path = snapshot_path(step);
+  table.validate(path);
+  Entry e{step, time, table.size(), table.has_velocity(), table.has_omega(), {}};
+  for (const auto& [name, values] : extra) {
+    check_series_name(name, "snapshot field name");
+    for (const char* r : kReserved)
+      if (name == r) throw Error("snapshot field name '" + name + "' is reserved");
+    if (values.size() != table.size())
+      throw Error(path + ": field '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                  std::to_string(table.size()) + " particles");
+    e.fields.push_back(name);
+  }
+  AtomicTarget target(path);
+  {
+    h5::Id file = h5::create_file(target.tmp_path(), path);
+    for (const auto& [k, v] : attributes_) h5::write_attribute(file, k, v, path);
+    h5::write_attribute(file, "time", time, path);
+    h5::write_attribute(file, "step", step, path);
+    detail::write_particle_group(file, table, path);
+    h5::Id g = h5::create_group(file, "fields", path);
+    for (const auto& [name, values] : extra) h5::write(g, name, {values.size()}, values.data(), path);
+    g.reset();
+    file.close_checked("'" + path + "'");
+  }
+  target.commit();
+  index_.set(step, render(e));
+  index_.write();
+  return path;
+}
+
+SnapshotSeries::Entry SnapshotSeries::read_entry(int64_t step) const {
+  const std::string path = snapshot_path(step);
+  h5::Id file = h5::open_file(path);
+  Entry e;
+  e.step = step;
+  e.time = h5::read_double_attribute(file, "time", path);
+  std::vector<hsize_t> dims;
+  e.n = h5::read_double(file, "particles/d", dims, path).size();
+  e.has_v = h5::exists(file, "particles/v");
+  e.has_omega = h5::exists(file, "particles/omega");
+  if (h5::exists(file, "fields")) {
+    h5::Id g(H5Gopen2(file, "fields", H5P_DEFAULT), H5Gclose);
+    e.fields = h5::members(g, path);
+  }
+  return e;
+}
+
+std::string SnapshotSeries::render(const Entry& e) const {
+  const std::string file = snapshot_file_name(prefix_, e.step);  // relative to the index
+  const std::string n = std::to_string(e.n), n3 = n + " 3";
+  std::string g = "   <Grid Name=\"step_" + std::to_string(e.step) + "\" GridType=\"Uniform\">\n";
+  g += "    <Time Value=\"" + xdmf::number(e.time) + "\"/>\n";
+  g += "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n + "\" NodesPerElement=\"1\"/>\n";
+  g += "    <Geometry GeometryType=\"XYZ\">\n     " + xdmf::hdf_item(n3, "Float", 8, file, "/particles/x") +
+       "\n    </Geometry>\n";
+  if (e.has_v)
+    g += xdmf::attribute("velocity", "Vector", "Node", xdmf::hdf_item(n3, "Float", 8, file, "/particles/v"));
+  if (e.has_omega)
+    g += xdmf::attribute("omega", "Vector", "Node", xdmf::hdf_item(n3, "Float", 8, file, "/particles/omega"));
+  g += xdmf::attribute("diameter", "Scalar", "Node", xdmf::hdf_item(n, "Float", 8, file, "/particles/d"));
+  g += xdmf::attribute("id", "Scalar", "Node", xdmf::hdf_item(n, "Int", 8, file, "/particles/id"));
+  g += xdmf::attribute("species", "Scalar", "Node", xdmf::hdf_item(n, "Int", 4, file, "/particles/species"));
+  for (const std::string& f : e.fields)
+    g += xdmf::attribute(f, "Scalar", "Node", xdmf::hdf_item(n, "Float", 8, file, "/fields/" + f));
+  return g + "   </Grid>\n";
+}
+
+}  // namespace cgdem::io
