@@ -1,0 +1,213 @@
+// FluidSolver: the step sequence (advance), predictor and time-step limits.
+// The equations are in fluid_solver.hpp; the pressure projection is in projection.cpp.
+#include "solvers/fluid/fluid_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cgdem::fluid {
+
+namespace {
+
+FaceRange active_range(const MacGrid& g, const FluidBoundary& bc, int d) {
+  FaceRange r{};
+  for (int a = 0; a < 3; ++a) r[a] = {0, g.n()[a]};
+  r[d] = active_face_range(g, bc, d);
+  return r;
+}
+
+double value_or_zero(const Field& f, int i, int j, int k) { return f.empty() ? 0.0 : f(i, j, k); }
+
+void check_source(const Field& f, const MacGrid& g, int d, const char* name) {
+  if (!f.empty() && f.extent() != g.face_extent(d))
+    throw Error(fmt::format("fluid sources: {}[{}] does not have the face layout of the grid", name, d));
+}
+
+}  // namespace
+
+pressure::GridSpec pressure_grid(const MacGrid& g, const FluidParams& params) {
+  pressure::GridSpec gs;
+  gs.nx = g.nx, gs.ny = g.ny, gs.nz = g.nz;
+  gs.dx = gs.dy = gs.dz = g.dx;
+  for (int s = 0; s < 6; ++s) {
+    BcType t = params.bc[s].type;
+    gs.bc[s] = t == BcType::Wall ? pressure::Boundary::Wall
+                                 : (t == BcType::Open ? pressure::Boundary::Open : pressure::Boundary::Periodic);
+  }
+  return gs;
+}
+
+FluidSolver::FluidSolver(const MacGrid& g, FluidParams params, std::unique_ptr<pressure::PressureSolver> ps)
+    : g_(g), params_(std::move(params)), ps_(std::move(ps)) {
+  g_.validate();
+  params_.validate();
+  if (!ps_) throw Error("fluid: no pressure solver given");
+  for (int d = 0; d < 3; ++d) {
+    E_old_[d] = make_face_field(g_, d, 1.0);
+    E_new_[d] = make_face_field(g_, d, 1.0);
+    R0_[d] = make_face_field(g_, d);
+    R1_[d] = make_face_field(g_, d);
+    ustar_[d] = make_face_field(g_, d);
+  }
+  rhs_.assign(g_.cells(), 0.0);
+  phi_.assign(g_.cells(), 0.0);
+}
+
+void FluidSolver::face_eps(const Field& eps_cell, Faces& E) const {
+  for (int d = 0; d < 3; ++d) {
+    std::array<int, 3> e = E[d].extent();
+    const std::array<int, 3> dd = unit(d);
+    for (int k = -kGhost; k < e[2] + kGhost; ++k)
+      for (int j = -kGhost; j < e[1] + kGhost; ++j)
+        for (int i = -kGhost; i < e[0] + kGhost; ++i) {
+          int im = i - dd[0], jm = j - dd[1], km = k - dd[2];
+          bool inside = im >= -kGhost && jm >= -kGhost && km >= -kGhost && i < g_.nx + kGhost &&
+                        j < g_.ny + kGhost && k < g_.nz + kGhost;
+          E[d](i, j, k) = inside ? 0.5 * (eps_cell(i, j, k) + eps_cell(im, jm, km)) : 1.0;
+        }
+  }
+}
+
+// R = -div(E rho u u) + div(eps tau) + E rho g + f_explicit on the active faces.
+void FluidSolver::explicit_rhs(const FluidState& s, const Field& eps_cell, const Faces& E, const Sources& src,
+                               Faces& R) {
+  const std::array<const Field*, 3> vel{&s.u, &s.v, &s.w};
+  const std::array<const Field*, 3> ef{&E[0], &E[1], &E[2]};
+  for (int d = 0; d < 3; ++d) {
+    FaceRange r = active_range(g_, params_.bc, d);
+    R[d].fill(0.0);
+    for (int k = r[2][0]; k < r[2][1]; ++k)
+      for (int j = r[1][0]; j < r[1][1]; ++j)
+        for (int i = r[0][0]; i < r[0][1]; ++i)
+          R[d](i, j, k) = E[d](i, j, k) * params_.rho * params_.gravity[d] +  // eq. (13) eps rho g
+                          value_or_zero(src.f_explicit[d], i, j, k);
+    add_advection(g_, d, params_.advection, params_.rho, vel, ef, r, R[d]);
+    if (params_.mu > 0) add_viscous(g_, d, params_.mu, vel, eps_cell, r, R[d]);
+  }
+}
+
+// (E^{n+1} rho/dt + K) u_hat = E^n rho u^n/dt + R + K v_p, then the direct forcing.
+void FluidSolver::predict(const FluidState& s, const Faces& R, const Sources& src, double dt, Faces& ustar) {
+  for (int d = 0; d < 3; ++d) {
+    ustar[d] = s.vel(d);  // prescribed boundary faces keep their values
+    FaceRange r = active_range(g_, params_.bc, d);
+    const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d];
+#pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
+    for (int k = r[2][0]; k < r[2][1]; ++k)
+      for (int j = r[1][0]; j < r[1][1]; ++j)
+        for (int i = r[0][0]; i < r[0][1]; ++i) {
+          double K = value_or_zero(src.K[d], i, j, k);
+          double num = E_old_[d](i, j, k) * params_.rho * s.vel(d)(i, j, k) / dt + R[d](i, j, k) +
+                       value_or_zero(src.Kv[d], i, j, k);
+          double u_hat = num / (E_new_[d](i, j, k) * params_.rho / dt + K);  // eq. (13), K implicit
+          double a = al(i, j, k);
+          ustar[d](i, j, k) = (1 - a) * u_hat + a * ub(i, j, k);  // eqs. (18), (20)
+        }
+  }
+}
+
+StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt) {
+  if (!(dt > 0)) throw Error(fmt::format("fluid: time step must be > 0 (got {})", dt));
+  if (s.u.extent() != g_.face_extent(0) || s.p.extent() != g_.n() || s.eps_old.extent() != g_.n())
+    throw Error("fluid: state does not match the solver's grid");
+  for (int d = 0; d < 3; ++d) {
+    check_source(src.K[d], g_, d, "K");
+    check_source(src.Kv[d], g_, d, "Kv");
+    check_source(src.f_explicit[d], g_, d, "f_explicit");
+  }
+  for (int k = 0; k < g_.nz; ++k)
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i)
+        if (!(s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1))
+          throw Error(fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {})", i, j, k));
+  StepStats st;
+  {
+    auto t = timers_.scope("ibm");
+    st.ibm_updated = update_ibm(g_, frame_end, params_.ibm_samples, ibm_);
+  }
+  {
+    auto t = timers_.scope("predictor");
+    fill_scalar_ghosts(g_, params_.bc, s.eps, ScalarKind::ZeroGradient);
+    fill_scalar_ghosts(g_, params_.bc, s.eps_old, ScalarKind::ZeroGradient);
+    face_eps(s.eps_old, E_old_);
+    face_eps(s.eps, E_new_);
+    fill_velocity_ghosts(g_, params_.bc, s.u, s.v, s.w);
+    explicit_rhs(s, s.eps_old, E_old_, src, R0_);
+    predict(s, R0_, src, dt, ustar_);
+  }
+  if (params_.time_order == 2) {
+    // Stage 1 result u^(1) (projected), then the Heun average of the explicit terms.
+    FluidState s1 = s;
+    project(s1, src, dt, ustar_, st);
+    auto t = timers_.scope("predictor");
+    fill_velocity_ghosts(g_, params_.bc, s1.u, s1.v, s1.w);
+    explicit_rhs(s1, s.eps, E_new_, src, R1_);
+    for (int d = 0; d < 3; ++d) {
+      double* r0 = R0_[d].data();
+      const double* r1 = R1_[d].data();
+      const long n = static_cast<long>(R0_[d].extent()[0] + 2 * kGhost) * (R0_[d].extent()[1] + 2 * kGhost) *
+                     (R0_[d].extent()[2] + 2 * kGhost);
+      for (long q = 0; q < n; ++q) r0[q] = 0.5 * (r0[q] + r1[q]);
+    }
+    s.p = s1.p;  // initial guess
+    predict(s, R0_, src, dt, ustar_);
+  }
+  project(s, src, dt, ustar_, st);
+  fill_velocity_ghosts(g_, params_.bc, s.u, s.v, s.w);
+  st.max_divergence = max_divergence(s, dt);
+  double umax = 0;
+  for (int d = 0; d < 3; ++d) {
+    double m = 0;
+    const Field& f = s.vel(d);
+    for (int k = 0; k < f.nk(); ++k)
+      for (int j = 0; j < f.nj(); ++j)
+        for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
+    umax += m;
+  }
+  st.cfl = umax * dt / g_.dx;
+  s.eps_old = s.eps;
+  s.t += dt;
+  return st;
+}
+
+double FluidSolver::max_divergence(const FluidState& s, double dt) const {
+  // E on a face is the mean of its two cells (ghost cells of eps filled by advance()).
+  auto flux = [&](int d, int i, int j, int k) {
+    std::array<int, 3> e = unit(d);
+    return 0.5 * (s.eps(i, j, k) + s.eps(i - e[0], j - e[1], k - e[2])) * s.vel(d)(i, j, k);
+  };
+  double m = 0;
+  for (int k = 0; k < g_.nz; ++k)
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i) {
+        double div = (s.eps(i, j, k) - s.eps_old(i, j, k)) / dt;
+        for (int d = 0; d < 3; ++d) {
+          std::array<int, 3> e = unit(d);
+          div += (flux(d, i + e[0], j + e[1], k + e[2]) - flux(d, i, j, k)) / g_.dx;
+        }
+        m = std::max(m, std::fabs(div));
+      }
+  return m;
+}
+
+double FluidSolver::stable_dt(const FluidState& s) const {
+  double umax = 0;
+  for (int d = 0; d < 3; ++d) {
+    double m = 0;
+    const Field& f = s.vel(d);
+    for (int k = 0; k < f.nk(); ++k)
+      for (int j = 0; j < f.nj(); ++j)
+        for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
+    umax += m;
+  }
+  for (const auto& sb : params_.bc)
+    if (sb.type == BcType::Wall) umax = std::max(umax, norm(sb.wall_velocity));
+  double dt = params_.dt_max;
+  if (umax > 0) dt = std::min(dt, params_.cfl * g_.dx / umax);
+  if (params_.mu > 0) dt = std::min(dt, params_.visc_safety * g_.dx * g_.dx * params_.rho / (6 * params_.mu));
+  return dt;
+}
+
+}  // namespace cgdem::fluid

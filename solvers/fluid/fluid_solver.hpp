@@ -1,0 +1,75 @@
+// The air stepper: volume-averaged incompressible Navier-Stokes with immersed boundaries
+// (paper eqs. 12, 13, 18-20), projection method on the MAC grid of src/fluid.
+//
+// One step from t^n to t^{n+1} = t^n + dt, with E = eps on the faces (mean of the two
+// cells), K the implicit source coefficient, alpha/U_B the IBM fractions at t^{n+1}:
+//
+//   R(u, E)  = -div(E rho u u) + div(eps tau(u)) + E rho g + f_explicit        (explicit)
+//   predictor (E^{n+1} rho/dt + K) u_hat = E^n rho u^n / dt + R~ + K v_p        (eq. 13)
+//             R~ = R(u^n, E^n)                          (time_order 1, forward Euler)
+//             R~ = [R(u^n, E^n) + R(u^(1), E^{n+1})]/2  (time_order 2, Heun; u^(1) is the
+//                                                         projected stage-1 result)
+//   IBM       u* = (1 - alpha) u_hat + alpha U_B,  i.e. f_IB = E rho alpha (U_B - u_hat)/dt
+//                                                                            (eqs. 18-20)
+//   pressure  div( a grad p ) = div(E u*) + (eps^{n+1} - eps^n)/dt,
+//             a = (1 - alpha) E^2 / (E rho/dt + K)                            (eq. 12)
+//   correct   u^{n+1} = u* - (a / E) grad p
+//
+// so that d(eps)/dt + div(E u^{n+1}) = 0 holds to the pressure solver's tolerance in every
+// cell. The factor (1 - alpha) in `a` confines the pressure correction to the fluid part of
+// a face control volume: a face inside a wall (alpha = 1) keeps u = U_B exactly, and the
+// solid's velocity enters the divergence through u*. p is the full pressure (not an
+// increment), solved each stage with the previous p as initial guess.
+//
+// Usage: the caller sets state.eps to eps(t^{n+1}) (state.eps_old holds eps(t^n)), passes
+// the scene evaluated at t^{n+1} and the sources, and calls advance(); on return
+// state.eps_old = state.eps and state.t = t^{n+1}.
+#pragma once
+#include <memory>
+
+#include "core/timers.hpp"
+#include "fluid/fluid_state.hpp"
+#include "fluid/ibm.hpp"
+#include "geometry/scene.hpp"
+
+namespace cgdem::fluid {
+
+class FluidSolver {
+ public:
+  // Creates the pressure solver from params.pressure (make_fluid_solver.cpp).
+  FluidSolver(const MacGrid& g, FluidParams params);
+  // Uses the given pressure solver (built for pressure_grid(g, params)).
+  FluidSolver(const MacGrid& g, FluidParams params, std::unique_ptr<pressure::PressureSolver> ps);
+
+  StepStats advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt);
+
+  // Largest stable step: min(dt_max, cfl dx / sum_d max|u_d|, visc_safety dx^2 rho / (6 mu)).
+  double stable_dt(const FluidState& s) const;
+  // max over cells of |(eps - eps_old)/dt + div(E u)| for the state as it is [1/s].
+  double max_divergence(const FluidState& s, double dt) const;
+
+  const FluidParams& params() const { return params_; }
+  const IbmFractions& ibm() const { return ibm_; }
+  const PhaseTimers& timers() const { return timers_; }
+  PhaseTimers& timers() { return timers_; }
+
+ private:
+  using Faces = std::array<Field, 3>;
+  void face_eps(const Field& eps_cell, Faces& E) const;
+  void explicit_rhs(const FluidState& s, const Field& eps_cell, const Faces& E, const Sources& src, Faces& R);
+  void predict(const FluidState& s, const Faces& R, const Sources& src, double dt, Faces& ustar);
+  void project(FluidState& s, const Sources& src, double dt, Faces& ustar, StepStats& st);
+
+  MacGrid g_;
+  FluidParams params_;
+  std::unique_ptr<pressure::PressureSolver> ps_;
+  IbmFractions ibm_;
+  PhaseTimers timers_;
+  Faces E_old_, E_new_, R0_, R1_, ustar_;
+  std::vector<double> ax_, ay_, az_, rhs_, phi_;
+  bool coeffs_set_ = false;
+};
+
+pressure::GridSpec pressure_grid(const MacGrid& g, const FluidParams& params);
+
+}  // namespace cgdem::fluid

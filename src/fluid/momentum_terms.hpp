@@ -1,0 +1,45 @@
+// Explicit momentum terms of the volume-averaged air equation (paper eqs. 13, 19) on the MAC
+// grid, for one velocity component d at its faces. Both ADD their contribution to `rhs`
+// (units N/m^3 = kg m^-2 s^-2), over the faces [lo, hi) given per axis.
+//
+// Advection, conservative form  -div(eps rho u u_d):
+//   for each direction e the flux through the upper e-side of the control volume of face
+//   idx is F_e(idx) = M_e(idx) q_e(idx), with the mass flux built from the SAME face fluxes
+//   eps_f u_f that enter continuity (so a uniform u_d is preserved exactly, eq. 12):
+//     M_e(idx) = rho/2 [ (eps u_e)(idx + e) + (eps u_e)(idx - d + e) ]
+//   and q_e the advected value reconstructed from the upwind side of M:
+//     q = u_c + 1/2 psi(a, b),  a = u_c - u_far,  b = u_down - u_c
+//   with the limiter psi: upwind 0; central b; van Leer 2ab/(a+b) (ab > 0, else 0);
+//   MC sign(b) min(2|a|, |a+b|/2, 2|b|) (ab > 0, else 0). The TVD limiters keep the
+//   reconstruction bounded at any cell Reynolds number.
+//   rhs(idx) -= sum_e [F_e(idx) - F_e(idx - e)] / dx
+//
+// Viscous stress, div(eps tau) with tau = mu (grad u + grad u^T) - 2/3 mu (div u) I:
+//   T_d(c)     = eps_c mu [ 2 (u_d(c+d) - u_d(c))/dx - 2/3 div u(c) ]        at cell centres
+//   T_e(edge)  = eps_edge mu [ (u_d(idx+e) - u_d(idx))/dx + (u_e(idx+e) - u_e(idx-d+e))/dx ]
+//   eps_edge the mean of the four cells around the edge,
+//   rhs(idx) += sum_e [T_e(idx) - T_e(idx - e)] / dx
+//
+// Reads: velocities and eps with valid ghost layers (boundary.hpp). Writes: rhs only.
+#pragma once
+#include <array>
+#include <string>
+
+#include "fluid/mac_grid.hpp"
+
+namespace cgdem::fluid {
+
+enum class Advection { Upwind, Central, VanLeer, MC };
+
+Advection advection_from_string(const std::string& name);  // "upwind", "central", "van-leer", "mc"
+
+using FaceRange = std::array<std::array<int, 2>, 3>;  // [lo, hi) per axis
+
+// vel[e] = velocity component e; eps_face[e] = eps on the e-faces.
+void add_advection(const MacGrid& g, int d, Advection scheme, double rho, const std::array<const Field*, 3>& vel,
+                   const std::array<const Field*, 3>& eps_face, const FaceRange& range, Field& rhs);
+
+void add_viscous(const MacGrid& g, int d, double mu, const std::array<const Field*, 3>& vel, const Field& eps_cell,
+                 const FaceRange& range, Field& rhs);
+
+}  // namespace cgdem::fluid
