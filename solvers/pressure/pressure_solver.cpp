@@ -2,6 +2,7 @@
 #include "solvers/pressure/pressure_solver.hpp"
 
 #include "core/error.hpp"
+#include "solvers/pressure/direct_solver.hpp"
 #include "solvers/pressure/fft_preconditioner.hpp"
 #include "solvers/pressure/krylov_solver.hpp"
 
@@ -9,6 +10,7 @@ namespace cgdem::pressure {
 
 std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const SolverOptions& opt) {
   if (opt.method == "cg") return std::make_unique<KrylovSolver>(grid, opt, nullptr);
+  if (opt.method == "cholmod") return std::make_unique<DirectSolver>(grid, opt);
   Poisson7 check(grid);  // validates the grid before any planning
   using Fft = FftPreconditioner;
   if (opt.method == "pcg-fft")
