@@ -1,1 +1,86 @@
-int main() { return 0; }
+// The cgdem command line.
+//   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N]
+//   cgdem bench dem --bed BED.csv [--steps N] [--threads T]
+//   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "app/dem_case.hpp"
+#include "app/run_dem.hpp"
+#include "bench/bench.hpp"
+#include "core/config.hpp"
+#include "core/error.hpp"
+#include "core/revision.hpp"
+
+namespace {
+
+int run_command(const std::string& file, const std::vector<std::string>& sets, const std::string& output) {
+  using namespace cgdem;
+  Config cfg = Config::from_file(file);
+  for (const auto& s : sets) cfg.apply_override(s);
+  if (!output.empty()) cfg.apply_override("output.dir=\"" + output + "\"");
+  app::DemCase c = app::read_dem_case(cfg);
+  cfg.check_unused();
+  return app::run_dem_case(c, {file, cfg.resolved_toml()});
+}
+
+int parse_grid(const std::string& g, cgdem::bench::PressureBenchArgs& a) {
+  if (std::sscanf(g.c_str(), "%dx%dx%d", &a.nx, &a.ny, &a.nz) != 3 || a.nx < 2 || a.ny < 2 || a.nz < 2)
+    throw cgdem::Error("--grid: expected NXxNYxNZ with every size >= 2, got '" + g + "'");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cgdem: coarse-grained DEM-CFD for powder die filling"};
+  app.set_version_flag("--version", std::string("cgdem ") + cgdem::kGitRevision);
+  app.require_subcommand(1);
+  int threads = 0;
+  app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+
+  std::string case_file, output;
+  std::vector<std::string> sets;
+  auto* run = app.add_subcommand("run", "run a case");
+  run->add_option("case", case_file, "case file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--set", sets, "override a key: key.path=value (repeatable)");
+  run->add_option("--output", output, "output folder (overrides output.dir)");
+  run->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+
+  auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
+  bench->require_subcommand(1);
+  cgdem::bench::DemBenchArgs dem_args;
+  auto* bdem = bench->add_subcommand("dem", "dense-bed DEM benchmark (shared/bench/dem_bed)");
+  bdem->add_option("--bed", dem_args.bed, "bed CSV (x,y,z,d)")->required()->check(CLI::ExistingFile);
+  bdem->add_option("--steps", dem_args.steps, "time steps")->check(CLI::PositiveNumber);
+  bdem->add_option("--threads", dem_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  cgdem::bench::PressureBenchArgs p_args;
+  std::string grid = "140x70x50";
+  bool no_cholmod = false;
+  auto* bpress = bench->add_subcommand("pressure", "pressure solve on the die-filling grid");
+  bpress->add_option("--grid", grid, "NXxNYxNZ");
+  bpress->add_option("--threads", p_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bpress->add_option("--repeats", p_args.repeats, "solves to average")->check(CLI::PositiveNumber);
+  bpress->add_flag("--no-cholmod", no_cholmod, "skip the (slow) direct CHOLMOD reference");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run) {
+      if (threads > 0) omp_set_num_threads(threads);
+      return run_command(case_file, sets, output);
+    }
+    if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
+    if (*bpress) {
+      parse_grid(grid, p_args);
+      p_args.with_cholmod = !no_cholmod;
+      return cgdem::bench::run_pressure_bench(p_args);
+    }
+  } catch (const cgdem::Error& e) {
+    std::fprintf(stderr, "cgdem: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

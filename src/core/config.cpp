@@ -341,6 +341,19 @@ Vec3 Section::vec3(const std::string& key) const {
   return {v[0], v[1], v[2]};
 }
 
+std::vector<Vec3> Section::vec3_list(const std::string& key) const {
+  const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
+  if (!v) fail(key, "missing (required: an array of [x, y, z])");
+  if (!v->is_array()) fail(key, fmt::format("expected an array of [x, y, z], got {}", type_name(*v)));
+  std::vector<Vec3> out;
+  for (const auto& e : v->as_array()) {
+    auto xs = as_numbers(*this, key, e, Range::any());
+    if (xs.size() != 3) fail(key, fmt::format("every element must be [x, y, z], got {}", show(e)));
+    out.push_back({xs[0], xs[1], xs[2]});
+  }
+  return out;
+}
+
 Vec3 Section::vec3_or(const std::string& key, Vec3 def) const {
   if (!has(key)) {
     numbers_or(key, {def.x, def.y, def.z});

@@ -53,6 +53,7 @@ class Section {
   std::string string(const std::string& key, const std::vector<std::string>& choices = {}) const;
   Vec3 vec3(const std::string& key) const;
   std::vector<double> numbers(const std::string& key, Range r = Range::any()) const;
+  std::vector<Vec3> vec3_list(const std::string& key) const;  // [[x,y,z], ...]
 
   // Optional values: the default is applied and recorded in the resolved configuration.
   double number_or(const std::string& key, double def, Range r = Range::any()) const;

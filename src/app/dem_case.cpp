@@ -1,0 +1,152 @@
+#include "app/dem_case.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "geometry/die_filling.hpp"
+#include "geometry/scene_config.hpp"
+#include "io/particle_csv.hpp"
+#include "io/particle_h5.hpp"
+#include "particles/particle_io.hpp"
+
+namespace cgdem::app {
+
+namespace {
+
+int species_index(const std::vector<Species>& sp, const Section& s, const std::string& key) {
+  std::string name = s.string(key);
+  for (size_t i = 0; i < sp.size(); ++i)
+    if (sp[i].name == name) return static_cast<int>(i);
+  std::vector<std::string> names;
+  for (const auto& x : sp) names.push_back(x.name);
+  s.fail(key, fmt::format("unknown species \"{}\" (defined: {})", name, fmt::join(names, ", ")));
+}
+
+}  // namespace
+
+DemCase read_dem_case(Config& cfg) {
+  DemCase c;
+  Section root = cfg.root();
+
+  // [particles]
+  Section ps = root.section("particles");
+  c.seed = static_cast<uint64_t>(ps.integer_or("seed", 1, Range::non_negative()));
+  c.dem.skin = ps.number_or("skin", 0.0, Range::non_negative());
+  auto specs = ps.sections("species");
+  if (specs.empty()) ps.fail("species", "at least one [[particles.species]] is required");
+  for (const Section& s : specs) {
+    Species sp;
+    sp.name = s.string("name");
+    sp.d_original = s.number("d_original", Range::positive());
+    sp.ratio = s.number_or("ratio", 1.0, Range::at_least(1.0));
+    sp.density = s.number("density", Range::positive());
+    for (const auto& other : c.species)
+      if (other.name == sp.name) s.fail("name", fmt::format("species \"{}\" is defined twice", sp.name));
+    c.species.push_back(sp);
+  }
+
+  // [contact]
+  Section cs = root.section("contact");
+  c.material.stiffness = cs.number("stiffness", Range::positive());
+  c.material.restitution = cs.number("restitution", Range::open_closed(0, 1));
+  c.material.friction = cs.number("friction", Range::non_negative());
+  c.material.wall_restitution = cs.number_or("wall_restitution", c.material.restitution, Range::open_closed(0, 1));
+  c.material.wall_friction = cs.number_or("wall_friction", c.material.friction, Range::non_negative());
+
+  // [domain], [physics], [walls]
+  Section ds = root.section("domain");
+  c.dem.domain = {ds.vec3("min"), ds.vec3("max")};
+  for (int a = 0; a < 3; ++a)
+    if (!(c.dem.domain.hi[a] > c.dem.domain.lo[a])) ds.fail("max", "must exceed domain.min on every axis");
+  c.dem.gravity = Section(&cfg, "physics").vec3_or("gravity", c.dem.gravity);
+  c.scene = root.has("walls") ? geometry::read_scene(root.section("walls")) : geometry::Scene{};
+  if (root.has("walls")) {
+    Section ws = root.section("walls");
+    double cutoff = ws.number_or("sdf_cutoff", 1e-3, Range::positive());
+    double rmax = 0;
+    for (const auto& s : c.species) rmax = std::max(rmax, 0.5 * s.diameter());
+    if (cutoff < rmax) ws.fail("sdf_cutoff", fmt::format("must be at least the largest parcel radius {:g} m", rmax));
+  }
+
+  // [[particles.insert]] and [[particles.file]]
+  for (const Section& s : ps.sections("insert")) {
+    InsertRegion r;
+    r.species = species_index(c.species, s, "species");
+    if (s.has("region")) {
+      std::string where = s.string("region", {"die_filling_cavity"});
+      if (!root.has("walls") || !root.section("walls").has("die_filling"))
+        s.fail("region", "\"die_filling_cavity\" needs a [walls.die_filling] section");
+      auto df = geometry::read_die_filling(root.section("walls").section("die_filling"));
+      r.lo = df.cavity_lo();
+      r.hi = df.cavity_hi();
+    } else {
+      r.lo = s.vec3("min");
+      r.hi = s.vec3("max");
+    }
+    const Species& sp = c.species[r.species];
+    if (s.has("count") && s.has("solid_volume")) s.fail("count", "give either count or solid_volume, not both");
+    if (s.has("solid_volume"))
+      r.count = std::lround(s.number("solid_volume", Range::positive()) / sp.volume());
+    else
+      r.count = s.integer("count", Range::at_least(1));
+    r.velocity = s.vec3_or("velocity", {0, 0, 0});
+    c.inserts.push_back(r);
+  }
+  for (const Section& s : ps.sections("file")) {
+    ParticleFile f;
+    f.path = s.string("path");
+    f.species = species_index(c.species, s, "species");
+    c.files.push_back(f);
+  }
+  if (c.inserts.empty() && c.files.empty())
+    ps.fail("insert", "no particles: add [[particles.insert]] or [[particles.file]]");
+
+  // [time]
+  Section ts = root.section("time");
+  c.dem.dt = ts.number("dt", Range::positive());
+  c.t_start = ts.number_or("start", 0.0);
+  c.t_end = ts.number("end");
+  if (!(c.t_end > c.t_start)) ts.fail("end", fmt::format("must be later than time.start = {:g} s", c.t_start));
+  double steps_per_collision = ts.number_or("min_steps_per_collision", 10.0, Range::at_least(2.0));
+  ContactTable table(c.species, c.material);
+  double tc = table.min_collision_time();
+  if (c.dem.dt > tc / steps_per_collision)
+    ts.fail("dt", fmt::format("{:g} s is too large: the shortest collision time is {:.4g} s and needs at least "
+                              "time.min_steps_per_collision = {:g} steps (dt <= {:.4g} s)",
+                              c.dem.dt, tc, steps_per_collision, tc / steps_per_collision));
+
+  // [output]
+  Section os = root.section("output");
+  c.output.dir = os.string_or("dir", "out");
+  c.output.energy_interval = os.number_or("energy_interval", 1e-3, Range::positive());
+  c.output.snapshot_interval = os.number_or("snapshot_interval", 1e-2, Range::positive());
+  c.output.progress_interval = os.number_or("progress_interval", 10.0, Range::positive());
+  c.output.max_speed = os.number_or("max_speed", 50.0, Range::positive());
+  return c;
+}
+
+std::unique_ptr<DemSolver> build_solver(const DemCase& c, const std::string& case_dir) {
+  auto dem = std::make_unique<DemSolver>(c.species, c.material, c.dem, c.scene);
+  dem->set_time(c.t_start);
+  geometry::Scene::Frame frame = dem->scene().at(c.t_start);
+  for (const auto& f : c.files) {
+    std::filesystem::path path(f.path);
+    if (path.is_relative()) path = std::filesystem::path(case_dir) / path;
+    std::string ext = path.extension().string();
+    io::ParticleTable t = (ext == ".h5" || ext == ".hdf5") ? io::read_particles_h5(path.string())
+                                                            : io::read_particles_csv(path.string());
+    append_table(dem->particles(), c.species, t, f.species, path.string());
+  }
+  uint64_t seed = c.seed;
+  for (const auto& r : c.inserts) {
+    int64_t next_id = 0;
+    for (auto id : dem->particles().id) next_id = std::max(next_id, id + 1);
+    insert_random(dem->particles(), c.species, r, frame, seed++, next_id);
+  }
+  return dem;
+}
+
+}  // namespace cgdem::app
