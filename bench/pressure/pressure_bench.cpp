@@ -128,7 +128,7 @@ int run_pressure_bench(const PressureBenchArgs& args) {
               args.ny, args.nz, f.g.cells(), f.g.dx * 1e3, args.threads, args.repeats);
   std::printf("%-14s %10s %12s %8s %12s %5s\n", "method", "setup-s", "solve-s", "iters", "rel-resid", "conv");
   double best = std::numeric_limits<double>::infinity();
-  std::vector<std::string> methods = {"pcg-fft", "pcg-fft-plain", "pcg-mg", "cg"};
+  std::vector<std::string> methods = {"pcg-fft", "pcg-fft-plain", "pcg-mg", "pcg-mg2", "cg"};
   if (args.with_cholmod) methods.push_back("cholmod");
   for (const auto& m : methods) {
     Row r;

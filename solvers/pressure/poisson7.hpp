@@ -31,12 +31,19 @@ class Poisson7 {
   void apply(const double* x, double* y) const;
   // r = b - A x
   void residual(const double* b, const double* x, double* r) const;
+  // One Gauss-Seidel half-sweep over the cells with (i+j+k) % 2 == color:
+  //   x_c = (b_c + sum_nb w_f x_nb) / D_c   (cells with D_c = 0 are left alone).
+  void gauss_seidel_color(const double* b, double* x, int color) const;
   // Subtract, on every floating component, its mean (deterministic serial sums).
   void project_floating(double* v) const;
 
   const GridSpec& grid() const { return g_; }
   long n() const { return g_.cells(); }
   const std::vector<double>& diag() const { return diag_; }
+  // The face coefficients a as given to set().
+  const std::vector<double>& ax() const { return ax_; }
+  const std::vector<double>& ay() const { return ay_; }
+  const std::vector<double>& az() const { return az_; }
   // Weights w = a/h^2 on faces (MAC layout; non-periodic boundary faces hold 0, the periodic
   // wrap face is face 0). Open-face weights are in open_x/y/z (0 unless the side is Open).
   const std::vector<double>& wx() const { return wx_; }
@@ -54,7 +61,7 @@ class Poisson7 {
   void label_components();
 
   GridSpec g_;
-  std::vector<double> wx_, wy_, wz_, diag_, open_;
+  std::vector<double> ax_, ay_, az_, wx_, wy_, wz_, diag_, open_;
   std::vector<int> comp_;
   std::vector<double> comp_count_;
   int n_floating_ = 0;

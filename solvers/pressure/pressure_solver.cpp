@@ -5,6 +5,7 @@
 #include "solvers/pressure/direct_solver.hpp"
 #include "solvers/pressure/fft_preconditioner.hpp"
 #include "solvers/pressure/krylov_solver.hpp"
+#include "solvers/pressure/multigrid.hpp"
 
 namespace cgdem::pressure {
 
@@ -15,6 +16,10 @@ std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const
   using Fft = FftPreconditioner;
   if (opt.method == "pcg-fft")
     return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<Fft>(grid, Fft::Scaling::Diagonal));
+  if (opt.method == "pcg-mg")
+    return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<MultigridPreconditioner>(grid, 1));
+  if (opt.method == "pcg-mg2")  // two smoothing sweeps per side, kept for the benchmark comparison
+    return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<MultigridPreconditioner>(grid, 2));
   if (opt.method == "pcg-fft-plain")  // unscaled variant, kept for the benchmark comparison
     return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<Fft>(grid, Fft::Scaling::None));
   throw Error("pressure: unknown solver method '" + opt.method +

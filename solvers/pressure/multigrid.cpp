@@ -1,0 +1,132 @@
+// Multigrid V-cycle preconditioner; see multigrid.hpp.
+#include "solvers/pressure/multigrid.hpp"
+
+#include <algorithm>
+
+namespace cgdem::pressure {
+
+namespace {
+// Coarse face coefficients normal to `axis`: mean of the fine faces each coarse face covers.
+std::vector<double> coarsen_faces(const GridSpec& f, const GridSpec& c, const std::vector<double>& a, int axis) {
+  const int nf[3] = {f.nx, f.ny, f.nz}, nc[3] = {c.nx, c.ny, c.nz};
+  long ef[3] = {nf[0], nf[1], nf[2]}, ec[3] = {nc[0], nc[1], nc[2]};
+  ef[axis] += 1;
+  ec[axis] += 1;
+  std::vector<double> out(ec[0] * ec[1] * ec[2]);
+#pragma omp parallel for collapse(2) schedule(static)
+  for (long K = 0; K < ec[2]; ++K)
+    for (long J = 0; J < ec[1]; ++J)
+      for (long I = 0; I < ec[0]; ++I) {
+        const long C[3] = {I, J, K};
+        long lo[3], hi[3];
+        for (int d = 0; d < 3; ++d) {
+          if (d == axis) lo[d] = hi[d] = std::min<long>(2 * C[d], nf[d]);
+          else { lo[d] = 2 * C[d]; hi[d] = std::min<long>(2 * C[d] + 1, nf[d] - 1); }
+        }
+        double s = 0;
+        int cnt = 0;
+        for (long k = lo[2]; k <= hi[2]; ++k)
+          for (long j = lo[1]; j <= hi[1]; ++j)
+            for (long i = lo[0]; i <= hi[0]; ++i) {
+              s += a[i + ef[0] * (j + ef[1] * k)];
+              ++cnt;
+            }
+        out[I + ec[0] * (J + ec[1] * K)] = s / cnt;
+      }
+  return out;
+}
+
+bool can_coarsen(const GridSpec& g) {
+  const int n[3] = {g.nx, g.ny, g.nz};
+  for (int d = 0; d < 3; ++d) {
+    if (n[d] < 4) return false;
+    if (g.bc[2 * d] == Boundary::Periodic && n[d] % 2) return false;
+  }
+  return g.cells() > MultigridPreconditioner::kCoarsestCells;
+}
+}  // namespace
+
+MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu) : nu_(nu) {
+  grids_.push_back(fine);
+  while (can_coarsen(grids_.back())) {
+    GridSpec c = grids_.back();
+    c.nx = (c.nx + 1) / 2; c.ny = (c.ny + 1) / 2; c.nz = (c.nz + 1) / 2;
+    c.dx *= 2; c.dy *= 2; c.dz *= 2;
+    grids_.push_back(c);
+  }
+  lv_.resize(grids_.size());
+  for (size_t l = 0; l < grids_.size(); ++l) {
+    const long n = grids_[l].cells();
+    lv_[l].b.resize(n);
+    lv_[l].x.resize(n);
+    lv_[l].r.resize(n);
+    if (l > 0) lv_[l].own = std::make_unique<Poisson7>(grids_[l]);
+  }
+}
+
+MultigridPreconditioner::~MultigridPreconditioner() = default;
+
+void MultigridPreconditioner::setup(const Poisson7& op) {
+  lv_[0].op = &op;
+  for (size_t l = 1; l < lv_.size(); ++l) {
+    const Poisson7& f = *lv_[l - 1].op;
+    lv_[l].own->set(coarsen_faces(grids_[l - 1], grids_[l], f.ax(), 0),
+                    coarsen_faces(grids_[l - 1], grids_[l], f.ay(), 1),
+                    coarsen_faces(grids_[l - 1], grids_[l], f.az(), 2));
+    lv_[l].op = lv_[l].own.get();
+  }
+  coarse_.reset();
+  coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
+}
+
+void MultigridPreconditioner::apply(const double* r, double* z) {
+  auto& L0 = lv_[0];
+  std::copy(r, r + L0.b.size(), L0.b.begin());
+  vcycle(0);
+  std::copy(L0.x.begin(), L0.x.end(), z);
+}
+
+void MultigridPreconditioner::vcycle(int l) {
+  Level& L = lv_[l];
+  if (l == levels() - 1) {
+    coarse_->solve(L.b.data(), L.x.data());
+    return;
+  }
+  const Poisson7& A = *L.op;
+  std::fill(L.x.begin(), L.x.end(), 0.0);
+  for (int s = 0; s < nu_; ++s) {
+    A.gauss_seidel_color(L.b.data(), L.x.data(), 0);
+    A.gauss_seidel_color(L.b.data(), L.x.data(), 1);
+  }
+  A.residual(L.b.data(), L.x.data(), L.r.data());
+  // Restriction R = P^T / 8 onto level l+1.
+  const GridSpec &f = grids_[l], &c = grids_[l + 1];
+  Level& C = lv_[l + 1];
+  std::fill(C.b.begin(), C.b.end(), 0.0);
+#pragma omp parallel for collapse(2) schedule(static)
+  for (int K = 0; K < c.nz; ++K)
+    for (int J = 0; J < c.ny; ++J)
+      for (int I = 0; I < c.nx; ++I) {
+        double s = 0;
+        for (int k = 2 * K; k <= std::min(2 * K + 1, f.nz - 1); ++k)
+          for (int j = 2 * J; j <= std::min(2 * J + 1, f.ny - 1); ++j)
+            for (int i = 2 * I; i <= std::min(2 * I + 1, f.nx - 1); ++i)
+              s += L.r[i + long(f.nx) * (j + long(f.ny) * k)];
+        C.b[I + long(c.nx) * (J + long(c.ny) * K)] = s / 8;
+      }
+  vcycle(l + 1);
+  // Prolongation: piecewise constant.
+#pragma omp parallel for collapse(2) schedule(static)
+  for (int k = 0; k < f.nz; ++k)
+    for (int j = 0; j < f.ny; ++j) {
+      const double* xc = C.x.data() + long(c.nx) * (j / 2 + long(c.ny) * (k / 2));
+      double* xf = L.x.data() + long(f.nx) * (j + long(f.ny) * k);
+      for (int i = 0; i < f.nx; ++i) xf[i] += xc[i / 2];
+    }
+  for (int s = 0; s < nu_; ++s) {
+    A.gauss_seidel_color(L.b.data(), L.x.data(), 1);
+    A.gauss_seidel_color(L.b.data(), L.x.data(), 0);
+  }
+}
+
+}  // namespace cgdem::pressure

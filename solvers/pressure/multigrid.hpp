@@ -1,0 +1,44 @@
+// Geometric multigrid V-cycle used as a PCG preconditioner ("pcg-mg").
+//
+// Levels: the fine grid, then grids coarsened by 2 per axis (n_c = ceil(n/2), h_c = 2h, same
+// boundary conditions) while the level has more than kCoarsestCells cells, every axis has
+// n >= 4, and periodic axes have even n. The coarse operator is re-discretised from face-averaged
+// coefficients: a_c on a coarse face = mean of a over the (up to 2x2) fine faces it covers.
+// Transfers: piecewise-constant prolongation P (x_f += x_c(parent)), restriction R = P^T / 8.
+// Smoother: red-black Gauss-Seidel, nu sweeps red->black before and black->red after the
+// coarse correction, so the V-cycle is a symmetric operator (required by PCG). Coarsest level:
+// CHOLMOD with pinned floating components (cholmod_factor.hpp).
+//   V(l, b):  x = 0; x <- S^nu(x, b); b_c = R (b - A x); x += P V(l+1, b_c); x <- (S^T)^nu(x, b)
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "solvers/pressure/cholmod_factor.hpp"
+#include "solvers/pressure/preconditioner.hpp"
+
+namespace cgdem::pressure {
+
+class MultigridPreconditioner : public Preconditioner {
+ public:
+  static constexpr long kCoarsestCells = 4000;
+  explicit MultigridPreconditioner(const GridSpec& fine, int nu = 1);
+  ~MultigridPreconditioner() override;
+  void setup(const Poisson7& op) override;
+  void apply(const double* r, double* z) override;
+  int levels() const { return static_cast<int>(grids_.size()); }
+
+ private:
+  struct Level {
+    std::unique_ptr<Poisson7> own;  // coarse levels own their operator
+    const Poisson7* op = nullptr;
+    std::vector<double> b, x, r;
+  };
+  void vcycle(int l);
+
+  std::vector<GridSpec> grids_;
+  std::vector<Level> lv_;
+  std::unique_ptr<CholmodFactor> coarse_;
+  int nu_;
+};
+
+}  // namespace cgdem::pressure
