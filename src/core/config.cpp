@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <sstream>
 #include <toml.hpp>
 
@@ -122,7 +123,7 @@ Config Config::from_file(const std::string& filename) {
   c.filename_ = filename;
   try {
     c.doc_->root = toml::parse<toml::discard_comments, std::map, std::vector>(filename);
-  } catch (const std::runtime_error& e) {
+  } catch (const std::exception& e) {
     throw ConfigError(fmt::format("{}: cannot read the case file: {}", filename, e.what()));
   }
   return c;
@@ -134,7 +135,7 @@ Config Config::from_string(const std::string& text, const std::string& name) {
   std::istringstream is(text);
   try {
     c.doc_->root = toml::parse<toml::discard_comments, std::map, std::vector>(is, name);
-  } catch (const std::runtime_error& e) {
+  } catch (const std::exception& e) {
     throw ConfigError(fmt::format("{}: cannot parse: {}", name, e.what()));
   }
   return c;
@@ -189,8 +190,32 @@ Value& value_of(Value& root, const std::string& path) {
 }
 }  // namespace
 
+namespace {
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
 void Section::fail(const std::string& key, const std::string& what) const {
-  throw ConfigError(fmt::format("{}: key '{}': {}", cfg_->filename_, key_path(key), what));
+  std::string hint;
+  if (what.rfind("missing", 0) == 0) {  // a misspelt key is the usual cause: name it
+    Value* t = lookup(cfg_->doc_->root, path_, false);
+    if (t && t->is_table())
+      for (const auto& [k, v] : t->as_table())
+        if (k != key && edit_distance(k, key) <= 2) hint += fmt::format(" (found '{}': misspelt?)", key_path(k));
+  }
+  throw ConfigError(fmt::format("{}: key '{}': {}{}", cfg_->filename_, key_path(key), what, hint));
 }
 
 bool Section::has(const std::string& key) const {

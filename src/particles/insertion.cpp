@@ -20,7 +20,7 @@ long insert_random(Particles& p, const std::vector<Species>& species, const Inse
   const Vec3 lo = region.lo + Vec3{r, r, r}, hi = region.hi - Vec3{r, r, r};
   if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
     throw Error(fmt::format("insertion region is smaller than one particle of species '{}'", s.name));
-  if (max_attempts <= 0) max_attempts = 1000 * region.count + 100000;
+  if (max_attempts <= 0) max_attempts = 200000;  // consecutive failures before giving up
 
   // Hash grid of existing and new particles, cell = 2 rmax.
   const double h = 2 * rmax;
@@ -34,11 +34,11 @@ long insert_random(Particles& p, const std::vector<Species>& species, const Inse
 
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
-  long placed = 0, attempts = 0;
+  long placed = 0, attempts = 0;  // attempts since the last success
   while (placed < region.count) {
     if (++attempts > max_attempts)
       throw Error(fmt::format("could place only {} of {} particles of species '{}' in the region [{:g},{:g},{:g}]-[{:g},{:g},{:g}] "
-                              "after {} attempts (solid fraction too high for random insertion)",
+                              "({} attempts in a row failed: the solid fraction is too high for random insertion)",
                               placed, region.count, s.name, region.lo.x, region.lo.y, region.lo.z, region.hi.x,
                               region.hi.y, region.hi.z, max_attempts));
     Vec3 x{ux(rng), uy(rng), uz(rng)};
@@ -60,6 +60,7 @@ long insert_random(Particles& p, const std::vector<Species>& species, const Inse
     p.add(next_id + placed, region.species, s, x, region.velocity);
     grid.emplace(key(x), static_cast<int>(p.size() - 1));
     ++placed;
+    attempts = 0;
   }
   return placed;
 }

@@ -1,7 +1,7 @@
 // Random insertion of non-overlapping spheres in a box, reproducible from a seed.
 // Candidates are drawn uniformly in [lo + r, hi - r] and rejected when they overlap a
 // particle already present or a wall (phi < r). Throws cgdem::Error if `count` spheres do
-// not fit after max_attempts tries (the region is too full: enlarge it or insert fewer).
+// fit: max_attempts candidates in a row rejected (the region is too full).
 #pragma once
 #include <cstdint>
 

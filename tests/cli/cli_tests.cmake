@@ -1,0 +1,21 @@
+# Command-line checks: every bad input in tests/cli/bad/*.toml (first line "# expect: REGEX")
+# must stop with that message and a non-zero exit; a tiny valid case must run.
+file(GLOB bad_cases CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/cli/bad/*.toml)
+foreach(f ${bad_cases})
+  get_filename_component(name ${f} NAME_WE)
+  file(STRINGS ${f} first LIMIT_COUNT 1)
+  string(REGEX REPLACE "^# expect: " "" expect "${first}")
+  add_test(NAME cli.bad_input.${name}
+           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${f} "-DEXPECT=${expect}"
+                   -DWORK=${PROJECT_BINARY_DIR}/cli_out/${name} -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
+  set_tests_properties(cli.bad_input.${name} PROPERTIES LABELS cli)
+endforeach()
+add_test(NAME cli.bad_set_syntax
+         COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                 "-DEXPECT=--set 'time.end': expected key.path=value" -DEXTRA=--set=time.end
+                 -DWORK=${PROJECT_BINARY_DIR}/cli_out/bad_set -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
+add_test(NAME cli.tiny_case_runs
+         COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/base.toml --output ${PROJECT_BINARY_DIR}/cli_out/tiny)
+set_tests_properties(cli.tiny_case_runs PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
+set_tests_properties(cli.bad_set_syntax PROPERTIES LABELS cli)
