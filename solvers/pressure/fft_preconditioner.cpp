@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "solvers/pressure/poisson7.hpp"
 
 namespace cgdem::pressure {
 
@@ -110,13 +111,13 @@ void FftPreconditioner::apply(const double* r, double* z) {
   double* b = plans_->buf;
   const double* s = dscale_.data();
   const double* il = inv_lambda_.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long c = 0; c < n; ++c) b[c] = s[c] * r[c];
   fftw_execute(plans_->fwd);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long c = 0; c < n; ++c) b[c] *= il[c];
   fftw_execute(plans_->bwd);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long c = 0; c < n; ++c) z[c] = s[c] * b[c];
 }
 

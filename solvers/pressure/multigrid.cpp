@@ -13,7 +13,7 @@ std::vector<double> coarsen_faces(const GridSpec& f, const GridSpec& c, const st
   ef[axis] += 1;
   ec[axis] += 1;
   std::vector<double> out(ec[0] * ec[1] * ec[2]);
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (long(out.size()) >= kParallelMin)
   for (long K = 0; K < ec[2]; ++K)
     for (long J = 0; J < ec[1]; ++J)
       for (long I = 0; I < ec[0]; ++I) {
@@ -103,7 +103,7 @@ void MultigridPreconditioner::vcycle(int l) {
   const GridSpec &f = grids_[l], &c = grids_[l + 1];
   Level& C = lv_[l + 1];
   std::fill(C.b.begin(), C.b.end(), 0.0);
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (f.cells() >= kParallelMin)
   for (int K = 0; K < c.nz; ++K)
     for (int J = 0; J < c.ny; ++J)
       for (int I = 0; I < c.nx; ++I) {
@@ -116,7 +116,7 @@ void MultigridPreconditioner::vcycle(int l) {
       }
   vcycle(l + 1);
   // Prolongation: piecewise constant.
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (f.cells() >= kParallelMin)
   for (int k = 0; k < f.nz; ++k)
     for (int j = 0; j < f.ny; ++j) {
       const double* xc = C.x.data() + long(c.nx) * (j / 2 + long(c.ny) * (k / 2));

@@ -30,21 +30,21 @@ void NonlinearPressureSolver::face_gradients(const GridSpec& g, const double* ph
     if (f == 0) return blo == Boundary::Open ? 2 * first / h : 0.0;
     return bhi == Boundary::Open ? -2 * last / h : 0.0;
   };
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (g.cells() >= kParallelMin)
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i <= nx; ++i)
         grad.x[i + long(nx + 1) * (j + long(ny) * k)] =
             fg(i, nx, g.bc[0], g.bc[1], c(std::max(i - 1, 0), j, k), c(std::min(i, nx - 1), j, k), c(0, j, k),
                c(nx - 1, j, k), g.dx);
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (g.cells() >= kParallelMin)
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i < nx; ++i)
         grad.y[i + long(nx) * (j + long(ny + 1) * k)] =
             fg(j, ny, g.bc[2], g.bc[3], c(i, std::max(j - 1, 0), k), c(i, std::min(j, ny - 1), k), c(i, 0, k),
                c(i, ny - 1, k), g.dy);
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (g.cells() >= kParallelMin)
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)

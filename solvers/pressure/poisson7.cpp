@@ -38,7 +38,7 @@ void unite(std::vector<int>& parent, int a, int b) {
 double dot(const double* a, const double* b, long n) {
   const long nb = (n + kBlock - 1) / kBlock;
   std::vector<double> part(nb);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long blk = 0; blk < nb; ++blk) {
     const long lo = blk * kBlock, hi = std::min(n, lo + kBlock);
     double s = 0;
@@ -158,7 +158,7 @@ void Poisson7::project_floating(double* v) const {
   for (long c = 0; c < N; ++c)
     if (comp_[c] >= 0) sum[comp_[c]] += v[c];
   for (int q = 0; q < n_floating_; ++q) sum[q] /= comp_count_[q];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (long c = 0; c < N; ++c)
     if (comp_[c] >= 0) v[c] -= sum[comp_[c]];
 }
@@ -170,7 +170,7 @@ void Poisson7::gauss_seidel_color(const double* b, double* x, int color) const {
   // An odd periodic y or z axis makes rows 0 and n-1 hold neighbouring cells of one colour:
   // then sweep serially, so the result stays independent of the thread count.
   const bool odd_wrap = (py && ny % 2) || (pz && nz % 2);
-#pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap)
+#pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap && plane * nz >= kParallelMin)
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j) {
       const long c0 = long(nx) * (j + long(ny) * k);
@@ -202,7 +202,7 @@ void Poisson7::apply(const double* x, double* y) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const long plane = long(nx) * ny;
-#pragma omp parallel for collapse(2) schedule(static)
+#pragma omp parallel for collapse(2) schedule(static) if (plane * nz >= kParallelMin)
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j) {
       const long c0 = long(nx) * (j + long(ny) * k);
@@ -233,7 +233,7 @@ void Poisson7::apply(const double* x, double* y) const {
 void Poisson7::residual(const double* b, const double* x, double* r) const {
   apply(x, r);
   const long N = n();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (long c = 0; c < N; ++c) r[c] = b[c] - r[c];
 }
 

@@ -67,6 +67,10 @@ class Poisson7 {
   int n_floating_ = 0;
 };
 
+// Loops shorter than this run serially: tiny OpenMP regions only cost barriers (badly so on a
+// loaded machine), and the arithmetic is the same either way.
+inline constexpr long kParallelMin = 32768;
+
 // Deterministic helpers on plain arrays (fixed blocking: sums do not depend on thread count).
 double dot(const double* a, const double* b, long n);
 inline double norm2(const double* a, long n);

@@ -19,27 +19,27 @@ void op_linearsum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
   const double *xd = data(x), *yd = data(y);
   double* zd = data(z);
   const long n = len(z);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long i = 0; i < n; ++i) zd[i] = a * xd[i] + b * yd[i];
 }
 void op_scale(realtype a, N_Vector x, N_Vector z) {
   const double* xd = data(x);
   double* zd = data(z);
   const long n = len(z);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long i = 0; i < n; ++i) zd[i] = a * xd[i];
 }
 void op_prod(N_Vector x, N_Vector y, N_Vector z) {
   const double *xd = data(x), *yd = data(y);
   double* zd = data(z);
   const long n = len(z);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long i = 0; i < n; ++i) zd[i] = xd[i] * yd[i];
 }
 void op_const(realtype c, N_Vector z) {
   double* zd = data(z);
   const long n = len(z);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long i = 0; i < n; ++i) zd[i] = c;
 }
 void install_ops(N_Vector v) {
