@@ -105,6 +105,7 @@ void FluidSolver::predict(const FluidState& s, const Faces& R, const Sources& sr
           double a = al(i, j, k);
           ustar[d](i, j, k) = (1 - a) * u_hat + a * ub(i, j, k);  // eqs. (18), (20)
         }
+    fill_velocity_component_ghosts(g_, params_.bc, d, ustar[d]);  // periodic images, wall faces
   }
 }
 
