@@ -21,6 +21,13 @@ DemSolver::DemSolver(std::vector<Species> species, const MaterialParams& materia
     params_.skin = 0.1 * dmax;
   }
   nl_.skin = params_.skin;
+  nl_.periodic.axis = params_.periodic;
+  nl_.periodic.lo = params_.domain.lo;
+  nl_.periodic.hi = params_.domain.hi;
+  for (int a = 0; a < 3; ++a)
+    if (params_.periodic[a] && !(std::isfinite(params_.domain.lo[a]) && std::isfinite(params_.domain.hi[a]) &&
+                                 params_.domain.hi[a] > params_.domain.lo[a]))
+      throw ConfigError(fmt::format("periodic axis {} needs a finite domain on that axis", "xyz"[a]));
   t_kick_ = timers_.id("integrate");
   t_neigh_ = timers_.id("neighbour lists");
   t_force_ = timers_.id("contact forces");
@@ -47,7 +54,10 @@ void DemSolver::remove_escaped() {
   std::vector<int> keep;
   keep.reserve(p_.size());
   for (size_t i = 0; i < p_.size(); ++i) {
-    if (params_.domain.contains(p_.x[i])) {
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+      if (!params_.periodic[a]) inside = inside && p_.x[i][a] >= params_.domain.lo[a] && p_.x[i][a] <= params_.domain.hi[a];
+    if (inside) {
       keep.push_back(static_cast<int>(i));
     } else {
       removed_damping_ += p_.e_damping[i];
@@ -100,9 +110,8 @@ long DemSolver::contact_count() const {
   long c = 0;
   for (size_t i = 0; i < p_.size(); ++i) {
     for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
-      int j = nl_.partner[e];
-      double r = p_.radius[i] + p_.radius[j];
-      if (static_cast<int>(i) < j && norm2(p_.x[i] - p_.x[j]) < r * r) ++c;
+      const double r = p_.radius[i] + p_.radius[nl_.partner[e]];
+      if (norm2(p_.x[i] - nl_.partner_x(p_, e)) < r * r) ++c;
     }
     for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e)
       if (frame_.part_distance(nl_.wall_part[e], p_.x[i]) < p_.radius[i]) ++c;

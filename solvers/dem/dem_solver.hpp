@@ -10,6 +10,7 @@
 // particle-wall contacts use each wall part's signed distance (eq. 16) and the wall's own
 // velocity in the relative velocity.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct DemParams {
   Vec3 gravity{0, 0, -9.81};  // [m/s^2]
   double skin = 0;            // neighbour skin [m]; 0 -> 0.1 x largest diameter
   geometry::Aabb domain;      // particles leaving it are removed and counted
+  // Periodic axes: the domain is the period box on them (positions wrap, nothing is removed).
+  std::array<bool, 3> periodic{false, false, false};
 };
 
 // Totals over all particles (and those removed), summed in a fixed order.

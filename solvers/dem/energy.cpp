@@ -18,19 +18,19 @@ EnergyBudget DemSolver::energy() const {
     b.dissipated_damping += p.e_damping[i];
     b.dissipated_friction += p.e_friction[i];
     b.work_walls += p.w_walls[i];
-    if (nl_.offset.size() != p.size() + 1) continue;
+    if (!nl_.valid_for(p)) continue;
     for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
       const int j = nl_.partner[e];
-      const double overlap = p.radius[i] + p.radius[j] - norm(p.x[i] - p.x[j]);
+      const double overlap = p.radius[i] + p.radius[j] - norm(p.x[i] - nl_.partner_x(p, e));
       if (overlap <= 0) continue;
       const auto& c = table_.pair(p.species[i], p.species[j]);
-      b.elastic += 0.25 * c.l3 * c.k * (overlap * overlap + norm2(nl_.xi[e]));  // half: seen from both sides
+      b.elastic += 0.5 * c.l3 * c.k * (overlap * overlap + norm2(nl_.hist[e].xi));
     }
     for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e) {
       const double overlap = p.radius[i] - frame_.part_distance(nl_.wall_part[e], p.x[i]);
       if (overlap <= 0) continue;
       const auto& c = table_.wall(p.species[i]);
-      b.elastic += 0.5 * c.l3 * c.k * (overlap * overlap + norm2(nl_.wall_xi[e]));
+      b.elastic += 0.5 * c.l3 * c.k * (overlap * overlap + norm2(nl_.wall_hist[e].xi));
     }
   }
   b.dissipated_damping += removed_damping_;

@@ -1,31 +1,60 @@
 #include "particles/neighbor_list.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "core/error.hpp"
+
 namespace cgdem {
+
+void Periodicity::wrap(Vec3& x) const {
+  for (int a = 0; a < 3; ++a) {
+    if (!axis[a]) continue;
+    const double L = hi[a] - lo[a];
+    double t = x[a] - lo[a];
+    t -= L * std::floor(t / L);
+    if (t >= L) t = 0;  // rounding of a value just below lo
+    x[a] = lo[a] + t;
+  }
+}
 
 namespace {
 
 struct CellGrid {
   Vec3 lo;
-  double h = 1;
+  double h[3] = {1, 1, 1};
   int n[3] = {1, 1, 1};
-  int cell_of(const Vec3& x) const {
-    int c[3];
-    for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>((x[a] - lo[a]) / h), 0, n[a] - 1);
-    return c[0] + n[0] * (c[1] + n[1] * c[2]);
+  void coords(const Vec3& x, int c[3]) const {
+    for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>((x[a] - lo[a]) / h[a]), 0, n[a] - 1);
   }
+  long index(int cx, int cy, int cz) const { return cx + static_cast<long>(n[0]) * (cy + static_cast<long>(n[1]) * cz); }
 };
+
+constexpr int kNoImage = 13;  // image code (sx+1) + 3 (sy+1) + 9 (sz+1) with s = 0
+
+// Entry of the old history, in old indices: pair lists are sorted by partner.
+const contact::History* find_history(const std::vector<int>& off, const std::vector<int>& partner,
+                                     const std::vector<contact::History>& xi,
+                         int owner, int other) {
+  auto first = partner.begin() + off[owner], last = partner.begin() + off[owner + 1];
+  auto it = std::lower_bound(first, last, other);
+  if (it == last || *it != other) return nullptr;
+  return &xi[it - partner.begin()];
+}
 
 }  // namespace
 
 void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   const int np = static_cast<int>(p.size());
   ++builds;
+  if (periodic.any())
+    for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
 
-  // 1. Cell grid over the particles' bounding box, cells at least one interaction range wide.
+  // 1. Cell grid over the particles' bounding box (the period on periodic axes), cells at
+  //    least one interaction range wide.
   CellGrid g;
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo;
   double rmax = 0;
@@ -35,15 +64,38 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
     rmax = std::max(rmax, p.radius[i]);
   }
   if (np == 0) lo = hi = Vec3{};
-  g.h = 2 * rmax + skin;
-  if (!(g.h > 0)) g.h = 1;
-  g.lo = lo;
-  for (int a = 0; a < 3; ++a) g.n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / g.h) + 1);
+  double range = 2 * rmax + skin;
+  if (!(range > 0)) range = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (periodic.axis[a]) {
+      const double L = periodic.hi[a] - periodic.lo[a];
+      g.lo[a] = periodic.lo[a];
+      g.n[a] = static_cast<int>(L / range);
+      if (g.n[a] < 3)
+        throw RunError(fmt::format("periodic length {:.4g} m along axis {} is shorter than three interaction ranges "
+                                   "(3 x {:.4g} m: largest diameter plus skin)",
+                                   L, "xyz"[a], range));
+      g.h[a] = L / g.n[a];
+    } else {
+      g.lo[a] = lo[a];
+      g.h[a] = range;
+      g.n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / range) + 1);
+    }
+  }
+  for (int c = 0; c < 27; ++c) {
+    const int s[3] = {c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1};
+    for (int a = 0; a < 3; ++a) shift[c][a] = periodic.axis[a] ? s[a] * (periodic.hi[a] - periodic.lo[a]) : 0.0;
+  }
   const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
 
   // 2. Counting sort of the particles by cell; order[new] = old.
-  std::vector<int> cell(np), start(ncell + 1, 0);
-  for (int i = 0; i < np; ++i) ++start[(cell[i] = g.cell_of(p.x[i])) + 1];
+  std::vector<long> cell(np);
+  std::vector<int> start(ncell + 1, 0);
+  for (int i = 0; i < np; ++i) {
+    int c[3];
+    g.coords(p.x[i], c);
+    ++start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+  }
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<int> order(np), fill(start.begin(), start.end() - 1);
   for (int i = 0; i < np; ++i) order[fill[cell[i]]++] = i;
@@ -53,34 +105,47 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
 
   // Old lists (in old indices), kept for the history carry-over.
   std::vector<int> old_off, old_partner, old_woff, old_wpart;
-  std::vector<Vec3> old_xi, old_wxi;
+  std::vector<contact::History> old_xi, old_wxi;
   old_off.swap(offset);
   old_partner.swap(partner);
-  old_xi.swap(xi);
+  old_xi.swap(hist);
   old_woff.swap(wall_offset);
   old_wpart.swap(wall_part);
-  old_wxi.swap(wall_xi);
+  old_wxi.swap(wall_hist);
   const bool have_old = old_off.size() == static_cast<size_t>(np) + 1;
 
-  // 3. Pair lists: count, then fill, each particle scanning the 27 cells in a fixed order.
+  // 3. Half pair lists: count, then fill; each owner scans the 27 cells in a fixed order
+  //    and keeps partners with a higher index.
   auto for_neighbours = [&](int i, auto&& visit) {
-    const Vec3& xi_ = p.x[i];
+    const Vec3& x0 = p.x[i];
     int c[3];
-    for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>((xi_[a] - g.lo[a]) / g.h), 0, g.n[a] - 1);
+    g.coords(x0, c);
     for (int dz = -1; dz <= 1; ++dz) {
-      int cz = c[2] + dz;
-      if (cz < 0 || cz >= g.n[2]) continue;
+      int cz = c[2] + dz, sz = 0;
+      if (cz < 0 || cz >= g.n[2]) {
+        if (!periodic.axis[2]) continue;
+        sz = cz < 0 ? -1 : 1;
+        cz -= sz * g.n[2];
+      }
       for (int dy = -1; dy <= 1; ++dy) {
-        int cy = c[1] + dy;
-        if (cy < 0 || cy >= g.n[1]) continue;
+        int cy = c[1] + dy, sy = 0;
+        if (cy < 0 || cy >= g.n[1]) {
+          if (!periodic.axis[1]) continue;
+          sy = cy < 0 ? -1 : 1;
+          cy -= sy * g.n[1];
+        }
         for (int dx = -1; dx <= 1; ++dx) {
-          int cx = c[0] + dx;
-          if (cx < 0 || cx >= g.n[0]) continue;
-          long cc = cx + static_cast<long>(g.n[0]) * (cy + static_cast<long>(g.n[1]) * cz);
-          for (int j = start[cc]; j < start[cc + 1]; ++j) {
-            if (j == i) continue;
-            double reach = p.radius[i] + p.radius[j] + skin;
-            if (norm2(p.x[j] - xi_) < reach * reach) visit(j);
+          int cx = c[0] + dx, sx = 0;
+          if (cx < 0 || cx >= g.n[0]) {
+            if (!periodic.axis[0]) continue;
+            sx = cx < 0 ? -1 : 1;
+            cx -= sx * g.n[0];
+          }
+          const int code = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
+          const long cc = g.index(cx, cy, cz);
+          for (int j = std::max(start[cc], i + 1); j < start[cc + 1]; ++j) {
+            const double reach = p.radius[i] + p.radius[j] + skin;
+            if (norm2(p.x[j] + shift[code] - x0) < reach * reach) visit(j, code);
           }
         }
       }
@@ -90,27 +155,43 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < np; ++i) {
     int count = 0;
-    for_neighbours(i, [&](int) { ++count; });
+    for_neighbours(i, [&](int, int) { ++count; });
     offset[i + 1] = count;
   }
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  partner.resize(offset[np]);
-  xi.assign(offset[np], Vec3{});
+  const int ne = offset[np];
+  partner.resize(ne);
+  image.resize(ne);
+  hist.assign(ne, contact::History{});
+  f_partner.assign(ne, Vec3{});
+  t_partner.assign(ne, Vec3{});
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < np; ++i) {
-    int e = offset[i];
-    for_neighbours(i, [&](int j) { partner[e++] = j; });
-    std::sort(partner.begin() + offset[i], partner.begin() + offset[i + 1]);
-    if (!have_old) continue;
-    // Carry the history over: look the partner up in the old list of the same particle.
-    const int oi = order[i];
-    for (int k = old_off[oi]; k < old_off[oi + 1]; ++k) {
-      if (old_xi[k] == Vec3{}) continue;
-      const int nj = new_of_old[old_partner[k]];
-      auto first = partner.begin() + offset[i], last = partner.begin() + offset[i + 1];
-      auto it = std::lower_bound(first, last, nj);
-      if (it != last && *it == nj) xi[it - partner.begin()] = old_xi[k];
+    std::vector<std::pair<int, int>> found;
+    found.reserve(offset[i + 1] - offset[i]);
+    for_neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
+    std::sort(found.begin(), found.end());
+    for (int k = 0, e = offset[i]; e < offset[i + 1]; ++e, ++k) {
+      partner[e] = found[k].first;
+      image[e] = static_cast<uint8_t>(found[k].second);
+      if (!have_old) continue;
+      // History of the same pair: under the lower of the two old indices, in its frame.
+      const int oi = order[i], oj = order[found[k].first];
+      if (oi < oj) {
+        if (const auto* h = find_history(old_off, old_partner, old_xi, oi, oj)) hist[e] = *h;
+      } else {
+        if (const auto* h = find_history(old_off, old_partner, old_xi, oj, oi)) hist[e] = h->flipped();
+      }
     }
+  }
+  // Reverse index, entries in increasing order for each partner.
+  rev_offset.assign(np + 1, 0);
+  for (int e = 0; e < ne; ++e) ++rev_offset[partner[e] + 1];
+  std::partial_sum(rev_offset.begin(), rev_offset.end(), rev_offset.begin());
+  rev_entry.resize(ne);
+  {
+    std::vector<int> pos(rev_offset.begin(), rev_offset.end() - 1);
+    for (int e = 0; e < ne; ++e) rev_entry[pos[partner[e]]++] = e;
   }
 
   // 4. Wall candidates: parts whose surface is within r + skin of the particle.
@@ -128,14 +209,14 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   }
   std::partial_sum(wall_offset.begin(), wall_offset.end(), wall_offset.begin());
   wall_part.resize(wall_offset[np]);
-  wall_xi.assign(wall_offset[np], Vec3{});
+  wall_hist.assign(wall_offset[np], contact::History{});
   for (int i = 0; i < np; ++i) {
     std::copy(cand[i].begin(), cand[i].end(), wall_part.begin() + wall_offset[i]);
     if (!have_old) continue;
     const int oi = order[i];
     for (int k = old_woff[oi]; k < old_woff[oi + 1]; ++k)
       for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e)
-        if (wall_part[e] == old_wpart[k]) wall_xi[e] = old_wxi[k];
+        if (wall_part[e] == old_wpart[k]) wall_hist[e] = old_wxi[k];
   }
 
   x_at_build = p.x;

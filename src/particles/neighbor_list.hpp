@@ -1,40 +1,68 @@
 // Verlet neighbour lists built from a cell list, with contact history attached.
 //
-// Full lists: every pair (i, j) appears in i's list and in j's list, so each particle
-// sums its own forces in a fixed order and the result is independent of the number of
-// threads (the contact law is exactly antisymmetric, contact_law.hpp). A pair is listed
-// when |x_i - x_j| < r_i + r_j + skin; the lists stay valid until some particle has moved
-// more than skin/2 (plus the largest wall displacement, for wall candidates).
+// Half lists: each pair is listed once, under its lower index i (the owner), with the
+// partner j > i. The force pass evaluates each contact once, adds it to the owner and
+// stores the partner's share per entry; a second pass gathers those shares for every
+// particle through the reverse index (rev_offset/rev_entry), always in the same order.
+// Every sum therefore has a fixed order: the result does not depend on the number of
+// threads. A pair is listed when |x_i - x_j| < r_i + r_j + skin; the lists stay valid
+// until some particle has moved more than skin/2 (plus the largest wall displacement,
+// for wall candidates).
+//
+// Periodic axes: positions are wrapped into the period box at each build, and each entry
+// carries the image of its partner (x_j + shift[image]). A periodic length must hold at
+// least three cells of one interaction range, so that a pair has a single image.
 //
 // build() also sorts the particles along the cell grid (better cache use) and carries
 // the tangential history of every pair and every particle-wall contact over to the new
-// lists, by particle identity.
+// lists, by particle identity (negated when the pair's owner changes).
 #pragma once
+#include <array>
+#include <cstdint>
 #include <vector>
 
+#include "contact/contact_law.hpp"
 #include "geometry/scene.hpp"
 #include "particles/particles.hpp"
 
 namespace cgdem {
 
+struct Periodicity {
+  std::array<bool, 3> axis{false, false, false};
+  Vec3 lo, hi;  // the period box on the periodic axes
+  bool any() const { return axis[0] || axis[1] || axis[2]; }
+  // Moves x into [lo, hi) on the periodic axes.
+  void wrap(Vec3& x) const;
+};
+
 struct NeighborList {
   double skin = 0;
-  // Particle pairs (CSR): entries offset[i] .. offset[i+1]-1 of `partner` and `xi`.
+  Periodicity periodic;
+  // Particle pairs (CSR over owners): entries offset[i] .. offset[i+1]-1.
   std::vector<int> offset, partner;
-  std::vector<Vec3> xi;  // tangential spring displacement of the contact
+  std::vector<uint8_t> image;     // partner image: its position is x[partner] + shift[image]
+  std::array<Vec3, 27> shift{};   // image shifts (index 13: none)
+  std::vector<contact::History> hist;  // contact history, in the owner's frame
+  std::vector<Vec3> f_partner;    // force pass output: force on the partner (= - on owner)
+  std::vector<Vec3> t_partner;    // force pass output: n x F_t (torque on the partner / -r_j)
+  // Reverse index: the entries whose partner is j are rev_entry[rev_offset[j] .. rev_offset[j+1]-1].
+  std::vector<int> rev_offset, rev_entry;
   // Particle-wall candidates (CSR over wall parts).
   std::vector<int> wall_offset, wall_part;
-  std::vector<Vec3> wall_xi;
+  std::vector<contact::History> wall_hist;
   // State at the last build, for the rebuild criterion.
   std::vector<Vec3> x_at_build;
   std::vector<Vec3> body_offset_at_build;
   long builds = 0;
 
-  // Sorts `p` (dropping nothing), rebuilds both lists and carries history over.
+  // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over.
   void build(Particles& p, const geometry::Scene::Frame& walls);
   // True when the lists may have become incomplete.
   bool needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const;
   size_t pair_entries() const { return partner.size(); }
+  bool valid_for(const Particles& p) const { return offset.size() == p.size() + 1; }
+  // The partner's position as seen from the owner (periodic image applied).
+  Vec3 partner_x(const Particles& p, int e) const { return p.x[partner[e]] + shift[image[e]]; }
 };
 
 }  // namespace cgdem
