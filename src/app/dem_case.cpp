@@ -61,6 +61,9 @@ DemCase read_dem_case(Config& cfg) {
   c.dem.domain = {ds.vec3("min"), ds.vec3("max")};
   for (int a = 0; a < 3; ++a)
     if (!(c.dem.domain.hi[a] > c.dem.domain.lo[a])) ds.fail("max", "must exceed domain.min on every axis");
+  // Periodic axes, e.g. "y" for a slab: parcels leaving at one side come back at the other.
+  const std::string periodic = ds.string_or("periodic", "none", {"none", "x", "y", "z", "xy", "xz", "yz", "xyz"});
+  for (int a = 0; a < 3; ++a) c.dem.periodic[a] = periodic.find("xyz"[a]) != std::string::npos;
   c.dem.gravity = Section(&cfg, "physics").vec3_or("gravity", c.dem.gravity);
   c.scene = root.has("walls") ? geometry::read_scene(root.section("walls")) : geometry::Scene{};
   if (root.has("walls")) {
