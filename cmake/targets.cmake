@@ -32,10 +32,11 @@ cgdem_module(cgdem_dem DIRS src/particles src/contact solvers/dem DEPS cgdem_geo
 cgdem_module(cgdem_pressure DIRS solvers/pressure
   DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial SUNDIALS::nvecopenmp PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse Eigen3::Eigen)
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
+cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
 
 file(GLOB CGDEM_APP_SRCS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/app/*.cpp)
 add_executable(cgdem ${CGDEM_APP_SRCS})
-target_link_libraries(cgdem PRIVATE cgdem_dem cgdem_fluid)
+target_link_libraries(cgdem PRIVATE cgdem_dem cgdem_fluid cgdem_coupling)
 target_compile_options(cgdem PRIVATE -Wall -Wextra)
 
 if(CGDEM_BUILD_TESTS AND GTest_FOUND)
@@ -58,6 +59,7 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(dem cgdem_dem)
   cgdem_tests(pressure cgdem_pressure)
   cgdem_tests(fluid cgdem_fluid)
+  cgdem_tests(coupling cgdem_coupling)
   # End-to-end checks of the command line (config errors, demo smoke run).
   if(EXISTS ${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
     include(${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)

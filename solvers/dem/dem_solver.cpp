@@ -36,6 +36,20 @@ DemSolver::DemSolver(std::vector<Species> species, const MaterialParams& materia
 
 void DemSolver::kick(double h) {
   const int n = static_cast<int>(p_.size());
+  if (air_forces_) {
+#pragma omp parallel for schedule(static) if (n >= 512)
+    for (int i = 0; i < n; ++i) {
+      const double hm = h * p_.inv_mass[i];
+      const Vec3 v0 = p_.v[i];
+      const double c = p_.drag[i];
+      const Vec3 v1 = (1.0 / (1.0 + hm * c)) * (v0 + hm * (p_.force[i] + c * p_.u_fluid[i]));
+      // Work of this kick's air impulse, exact for the kinetic energy it changes.
+      p_.w_fluid[i] += dot(h * (p_.f_ext[i] + c * (p_.u_fluid[i] - v1)), 0.5 * (v0 + v1));
+      p_.v[i] = v1;
+      p_.omega[i] += (h * p_.inv_inertia[i]) * p_.torque[i];
+    }
+    return;
+  }
 #pragma omp parallel for schedule(static) if (n >= 512)
   for (int i = 0; i < n; ++i) {
     p_.v[i] += (h * p_.inv_mass[i]) * p_.force[i];
@@ -63,6 +77,7 @@ void DemSolver::remove_escaped() {
       removed_damping_ += p_.e_damping[i];
       removed_friction_ += p_.e_friction[i];
       removed_walls_ += p_.w_walls[i];
+      removed_fluid_ += p_.w_fluid[i];
       ++removed_;
     }
   }
@@ -104,6 +119,12 @@ void DemSolver::step() {
   compute_forces();
   auto scope = timers_.scope(t_kick_);
   kick(0.5 * dt);
+}
+
+double DemSolver::fluid_work() const {
+  double w = removed_fluid_;
+  for (double x : p_.w_fluid) w += x;
+  return w;
 }
 
 long DemSolver::contact_count() const {

@@ -6,6 +6,10 @@
 //   rebuild neighbour lists if some particle (or wall) moved more than skin/2
 //   F^{n+1}   = contacts(x^{n+1}, v^{n+1/2}, w^{n+1/2}) + walls + m g + f_ext
 //   v^{n+1}   = v^{n+1/2} + dt/2 F^{n+1}/m,  w^{n+1} likewise.
+// With air (enable_air_forces) each half kick treats the drag implicitly (backward Euler
+// over the half step, unconditionally stable for any drag relaxation time):
+//   v' = (v + h/m (F + c u_f)) / (1 + h c/m),  F = contacts + walls + m g + f_ext,
+// c = Particles::drag, u_f = Particles::u_fluid, held fixed by the coupling over a fluid step.
 // Contact forces follow contact_law.hpp with the pair parameters of ContactTable;
 // particle-wall contacts use each wall part's signed distance (eq. 16) and the wall's own
 // velocity in the relative velocity.
@@ -38,12 +42,13 @@ struct EnergyBudget {
   double dissipated_damping = 0;   // by the normal dashpots, since t = start
   double dissipated_friction = 0;  // tangential dashpot and sliding
   double work_walls = 0;           // done on the particles by moving walls
+  double work_fluid = 0;           // done on the particles by the air (drag, pressure force)
   Vec3 momentum;
   double mass = 0;
   // Should stay constant: E_kin + E_pot + E_el + dissipated - wall work.
   double balance() const {
     return kinetic_translational + kinetic_rotational + potential + elastic + dissipated_damping +
-           dissipated_friction - work_walls;
+           dissipated_friction - work_walls - work_fluid;
   }
 };
 
@@ -66,6 +71,12 @@ class DemSolver {
   void step();
 
   EnergyBudget energy() const;
+  // Work done on the particles by drag and f_ext since the start (kept per particle, summed
+  // in a fixed order; includes removed particles).
+  double fluid_work() const;
+  // Air forces: when on, the kick integrates the linear drag drag (u_fluid - v) implicitly
+  // (Particles::drag, u_fluid set by the coupling) and books its work and f_ext's.
+  void enable_air_forces(bool on) { air_forces_ = on; }
   long removed() const { return removed_; }      // particles that left the domain
   long neighbor_builds() const { return nl_.builds; }
   size_t pair_entries() const { return nl_.pair_entries(); }
@@ -93,8 +104,9 @@ class DemSolver {
   long steps_ = 0;
   long removed_ = 0;
   bool forces_valid_ = false;
+  bool air_forces_ = false;
   // Energy totals of particles that were removed (their per-particle accounts).
-  double removed_damping_ = 0, removed_friction_ = 0, removed_walls_ = 0;
+  double removed_damping_ = 0, removed_friction_ = 0, removed_walls_ = 0, removed_fluid_ = 0;
   PhaseTimers timers_;
   int t_kick_, t_drift_, t_neigh_, t_force_;
 };

@@ -11,12 +11,16 @@ void Particles::add(int64_t pid, int sp, const Species& s, const Vec3& pos, cons
   force.emplace_back();
   torque.emplace_back();
   f_ext.emplace_back();
+  drag.push_back(0);
+  u_fluid.emplace_back();
+  v_avg.push_back(vel);
   radius.push_back(0.5 * s.diameter());
   inv_mass.push_back(1.0 / s.mass());
   inv_inertia.push_back(1.0 / s.inertia());
   e_damping.push_back(0);
   e_friction.push_back(0);
   w_walls.push_back(0);
+  w_fluid.push_back(0);
 }
 
 namespace {
@@ -37,12 +41,16 @@ void Particles::reorder(const std::vector<int>& order) {
   apply(force, order);
   apply(torque, order);
   apply(f_ext, order);
+  apply(drag, order);
+  apply(u_fluid, order);
+  apply(v_avg, order);
   apply(radius, order);
   apply(inv_mass, order);
   apply(inv_inertia, order);
   apply(e_damping, order);
   apply(e_friction, order);
   apply(w_walls, order);
+  apply(w_fluid, order);
 }
 
 }  // namespace cgdem

@@ -15,11 +15,17 @@ struct Particles {
   std::vector<int> species;
   std::vector<Vec3> x, v, omega;   // position [m], velocity [m/s], angular velocity [1/s]
   std::vector<Vec3> force, torque;  // accumulated in the force pass [N], [N m]
-  std::vector<Vec3> f_ext;          // external force set by a coupling (drag, pressure) [N]
+  std::vector<Vec3> f_ext;          // external force set by a coupling (pressure gradient) [N]
+  // Linear drag set by a coupling, F_D = drag (u_fluid - v), integrated implicitly in the
+  // kick (DemSolver::kick); drag = 0 means no air.
+  std::vector<double> drag;         // V beta / (1 - eps) [kg/s], paper eq. (8)
+  std::vector<Vec3> u_fluid;        // air velocity at the particle [m/s]
+  std::vector<Vec3> v_avg;          // mean velocity over the current fluid step (coupling) [m/s]
   std::vector<double> radius, inv_mass, inv_inertia;
   // Running energy totals per particle (summed in a fixed order for diagnostics, so the
   // result does not depend on the number of threads) [J].
   std::vector<double> e_damping, e_friction, w_walls;
+  std::vector<double> w_fluid;      // work done on the particle by drag and f_ext [J]
 
   size_t size() const { return x.size(); }
   void add(int64_t pid, int sp, const Species& s, const Vec3& pos, const Vec3& vel = {}, const Vec3& w = {});

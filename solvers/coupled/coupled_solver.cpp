@@ -1,0 +1,63 @@
+#include "solvers/coupled/coupled_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cgdem {
+
+CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::FluidState& air,
+                             coupling::Exchange exchange, CoupledParams params)
+    : dem_(dem), fluid_(fluid), air_(air), ex_(std::move(exchange)), params_(params) {
+  if (!(params_.dt_fluid_max > 0)) throw Error("coupled solver: dt_fluid_max must be > 0");
+  dem_.enable_air_forces(true);
+  air_.t = dem_.time();
+  void_stats_ = ex_.void_fraction(dem_.particles(), air_.eps);
+  air_.eps_old = air_.eps;
+  t_gather_ = timers_.id("air -> parcels");
+  t_map_ = timers_.id("void fraction");
+  t_deposit_ = timers_.id("parcels -> air");
+}
+
+int CoupledSolver::substeps() const {
+  const double dt = std::min(params_.dt_fluid_max, fluid_.stable_dt(air_));
+  return std::max(1, static_cast<int>(std::floor(dt / dem_.params().dt * (1 + 1e-12))));
+}
+
+void CoupledSolver::advance_particles(int n_sub) {
+  Particles& p = dem_.particles();
+  if (!params_.move_particles) {
+    p.v_avg = p.v;
+    dem_.set_time(dem_.time() + n_sub * dem_.params().dt);
+    return;
+  }
+  std::fill(p.v_avg.begin(), p.v_avg.end(), Vec3{});
+  const double w = 1.0 / n_sub;
+  for (int s = 0; s < n_sub; ++s) {
+    dem_.step();  // may re-sort or remove particles: v_avg moves with them
+    for (size_t i = 0; i < p.size(); ++i) p.v_avg[i] += w * p.v[i];
+  }
+}
+
+CoupledStepStats CoupledSolver::step() {
+  CoupledStepStats st;
+  st.substeps = substeps();
+  st.dt_fluid = st.substeps * dem_.params().dt;
+  const double t_end = air_.t + st.dt_fluid;
+  Particles& p = dem_.particles();
+
+  { auto t = timers_.scope(t_gather_);
+    ex_.air_to_parcels(air_, p); }                                     // 1. u_f, c_p, f_ext at t^n
+  advance_particles(st.substeps);                                     // 2. DEM substeps
+  { auto t = timers_.scope(t_map_);
+    void_stats_ = ex_.void_fraction(p, air_.eps); }                   // 3. eps^{n+1}
+  { auto t = timers_.scope(t_deposit_);
+    if (params_.feedback) ex_.parcels_to_air(p, src_);                // 4. K, Kv (eq. 14)
+    else src_ = {}; }
+  st.fluid = fluid_.advance(air_, dem_.scene().at(t_end), src_, st.dt_fluid);  // 5. air
+  air_.t = t_end;
+  dem_.set_time(t_end);  // removes the round-off of N additions of dt_DEM
+  st.void_fraction = void_stats_;
+  return st;
+}
+
+}  // namespace cgdem

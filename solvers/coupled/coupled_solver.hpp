@@ -1,0 +1,69 @@
+// The coupled DEM-CFD step (paper sections 2-3; physics.md "stability facts").
+//
+// One fluid step t^n -> t^{n+1} = t^n + dt_f, dt_f = N dt_DEM:
+//   1. air -> parcels   u_f, eps, grad p at every parcel from the air at t^n; the linear
+//                       drag coefficient c_p = V beta/(1-eps) (eqs. 8-11, ORIGINAL d_O) and
+//                       f_ext = -V grad p, held fixed over the step
+//   2. DEM substeps     N velocity-Verlet steps with contacts, walls, gravity, f_ext and the
+//                       drag c_p (u_f - v) integrated implicitly in each kick; the mean
+//                       parcel velocity vbar_p over the step is accumulated
+//   3. void fraction    eps^{n+1} from the parcel positions at t^{n+1} (kernel mapping)
+//   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w c_p vbar_p / V_cell   (eq. 14)
+//   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
+//                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
+// Both phases treat the drag implicitly, so dt_f may exceed the air's drag relaxation time
+// eps rho_f/beta (~1e-5 s in a packed bed) by orders of magnitude.
+//
+// Variants (for verification and to isolate effects): feedback = false drops step 4 (the
+// air does not feel the parcels: one-way); move_particles = false skips step 2 (a fixed
+// bed: parcels keep their place and velocity, and still drag the air).
+#pragma once
+#include "coupling/exchange.hpp"
+#include "solvers/dem/dem_solver.hpp"
+#include "solvers/fluid/fluid_solver.hpp"
+
+namespace cgdem {
+
+struct CoupledParams {
+  double dt_fluid_max = 1e-4;  // [s] upper bound of the fluid step (also the CFL limit applies)
+  bool feedback = true;        // two-way coupling (the parcels' drag acts on the air)
+  bool move_particles = true;  // false: parcels held in place
+};
+
+struct CoupledStepStats {
+  int substeps = 0;
+  double dt_fluid = 0;
+  coupling::VoidStats void_fraction;
+  fluid::StepStats fluid;
+};
+
+class CoupledSolver {
+ public:
+  // The solvers are owned by the caller and must outlive this object. Maps eps at t^n.
+  CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::FluidState& air, coupling::Exchange exchange,
+                CoupledParams params);
+
+  CoupledStepStats step();
+  double time() const { return dem_.time(); }
+  // Substeps of the coming fluid step: the largest N with N dt_DEM <= min(dt_fluid_max, CFL).
+  int substeps() const;
+
+  const coupling::VoidStats& last_void_stats() const { return void_stats_; }
+  const coupling::Exchange& exchange() const { return ex_; }
+  PhaseTimers& timers() { return timers_; }
+
+ private:
+  void advance_particles(int n_sub);
+
+  DemSolver& dem_;
+  fluid::FluidSolver& fluid_;
+  fluid::FluidState& air_;
+  coupling::Exchange ex_;
+  CoupledParams params_;
+  fluid::Sources src_;
+  coupling::VoidStats void_stats_;
+  PhaseTimers timers_;
+  int t_gather_, t_map_, t_deposit_;
+};
+
+}  // namespace cgdem

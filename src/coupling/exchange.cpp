@@ -1,0 +1,94 @@
+#include "coupling/exchange.hpp"
+
+#include <algorithm>
+
+#include "fluid/boundary.hpp"
+
+namespace cgdem::coupling {
+
+Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species, ExchangeParams params)
+    : g_(g), params_(std::move(params)) {
+  for (int a = 0; a < 3; ++a) periodic_[a] = params_.bc[2 * a].type == fluid::BcType::Periodic;
+  for (const auto& s : species) {
+    volume_.push_back(s.volume());
+    d_original_.push_back(s.d_original);
+  }
+  cells_ = cell_lattice(g_, periodic_);
+  for (int d = 0; d < 3; ++d) faces_[d] = face_lattice(g_, d, periodic_);
+}
+
+VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
+  fluid::Field vs = fluid::make_cell_field(g_);
+  VoidStats st;
+  for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
+    const double V = volume_[p.species[i]];
+    deposit(tsc_stencil(cells_, p.x[i]), V, vs);
+    st.parcel_volume += V;
+  }
+  const double vc = g_.dx * g_.dx * g_.dx;
+  for (int k = 0; k < g_.nz; ++k)
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i) {
+        const double raw = 1 - vs(i, j, k) / vc;
+        st.grid_volume += vs(i, j, k);
+        st.eps_min_raw = std::min(st.eps_min_raw, raw);
+        if (raw < params_.eps_min) ++st.clipped_cells;
+        eps(i, j, k) = std::max(params_.eps_min, raw);
+      }
+  return st;
+}
+
+void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const {
+  // Face gradients of p, with the domain-side ghosts of the air's boundary conditions.
+  fluid::Field pg = air.p;
+  fluid::fill_scalar_ghosts(g_, params_.bc, pg, fluid::ScalarKind::Pressure);
+  std::array<fluid::Field, 3> grad;
+  for (int d = 0; d < 3; ++d) {
+    grad[d] = fluid::make_face_field(g_, d);
+    const auto e = grad[d].extent();
+    const auto u = fluid::unit(d);
+    for (int k = 0; k < e[2]; ++k)
+      for (int j = 0; j < e[1]; ++j)
+        for (int i = 0; i < e[0]; ++i)
+          grad[d](i, j, k) = (pg(i, j, k) - pg(i - u[0], j - u[1], k - u[2])) / g_.dx;
+  }
+  const int n = static_cast<int>(p.size());
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (int i = 0; i < n; ++i) {
+    const int s = p.species[i];
+    const double eps = interpolate(tsc_stencil(cells_, p.x[i]), air.eps);
+    Vec3 uf, gp;
+    for (int d = 0; d < 3; ++d) {
+      const Stencil st = tsc_stencil(faces_[d], p.x[i]);
+      uf[d] = interpolate(st, air.vel(d));
+      gp[d] = interpolate(st, grad[d]);
+    }
+    const double slip = norm(uf - p.v[i]);
+    p.u_fluid[i] = uf;
+    p.drag[i] = volume_[s] * beta_over_solid(params_.law, eps, slip, d_original_[s], params_.air);  // eq. (8)
+    p.f_ext[i] = -volume_[s] * gp;
+  }
+}
+
+void Exchange::parcels_to_air(const Particles& p, fluid::Sources& src) const {
+  const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
+  for (int d = 0; d < 3; ++d) {
+    src.K[d] = fluid::make_face_field(g_, d);
+    src.Kv[d] = fluid::make_face_field(g_, d);
+  }
+  for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
+    const double c = p.drag[i] * inv_vc;
+    if (c == 0) continue;
+    for (int d = 0; d < 3; ++d) {
+      const Stencil st = tsc_stencil(faces_[d], p.x[i]);
+      deposit(st, c, src.K[d]);
+      deposit(st, c * p.v_avg[i][d], src.Kv[d]);
+    }
+  }
+  for (int d = 0; d < 3; ++d) {
+    sync_periodic_face(d, periodic_, src.K[d]);
+    sync_periodic_face(d, periodic_, src.Kv[d]);
+  }
+}
+
+}  // namespace cgdem::coupling

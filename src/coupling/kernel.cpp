@@ -1,0 +1,75 @@
+#include "coupling/kernel.hpp"
+
+#include <cmath>
+
+namespace cgdem::coupling {
+
+Lattice cell_lattice(const fluid::MacGrid& g, std::array<bool, 3> periodic) {
+  return {g.origin + 0.5 * g.dx * Vec3{1, 1, 1}, g.dx, g.n(), periodic};
+}
+
+Lattice face_lattice(const fluid::MacGrid& g, int d, std::array<bool, 3> periodic) {
+  Lattice L = cell_lattice(g, periodic);
+  L.origin[d] = g.origin[d];
+  L.n = g.face_extent(d);
+  if (periodic[d]) L.n[d] -= 1;  // face n is the image of face 0
+  return L;
+}
+
+Stencil tsc_stencil(const Lattice& L, const Vec3& x) {
+  Stencil s;
+  for (int a = 0; a < 3; ++a) {
+    const double q = (x[a] - L.origin[a]) / L.h;
+    const double i0 = std::nearbyint(q);
+    const double t = q - i0;
+    s.w[a] = {0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t)};
+    const int n = L.n[a];
+    for (int m = 0; m < 3; ++m) {
+      long i = static_cast<long>(i0) - 1 + m;
+      if (L.periodic[a]) {
+        i %= n;
+        if (i < 0) i += n;
+      } else {
+        i = i < 0 ? 0 : (i >= n ? n - 1 : i);
+      }
+      s.idx[a][m] = static_cast<int>(i);
+    }
+  }
+  return s;
+}
+
+void deposit(const Stencil& s, double value, fluid::Field& f) {
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b) {
+      const double wbc = value * s.w[1][b] * s.w[2][c];
+      for (int a = 0; a < 3; ++a) f(s.idx[0][a], s.idx[1][b], s.idx[2][c]) += wbc * s.w[0][a];
+    }
+}
+
+double interpolate(const Stencil& s, const fluid::Field& f) {
+  double sum = 0;
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b) {
+      double row = 0;
+      for (int a = 0; a < 3; ++a) row += s.w[0][a] * f(s.idx[0][a], s.idx[1][b], s.idx[2][c]);
+      sum += row * s.w[1][b] * s.w[2][c];
+    }
+  return sum;
+}
+
+void sync_periodic_face(int d, std::array<bool, 3> periodic, fluid::Field& f) {
+  if (!periodic[d]) return;
+  const auto e = f.extent();
+  const int n = e[d] - 1;
+  for (int k = 0; k < e[2]; ++k)
+    for (int j = 0; j < e[1]; ++j)
+      for (int i = 0; i < e[0]; ++i) {
+        std::array<int, 3> q{i, j, k};
+        if (q[d] != n) continue;
+        std::array<int, 3> src = q;
+        src[d] = 0;
+        f(i, j, k) = f(src[0], src[1], src[2]);
+      }
+}
+
+}  // namespace cgdem::coupling

@@ -1,0 +1,50 @@
+// Particle <-> grid transfer kernel of the coupling: the quadratic B-spline ("triangular
+// shaped cloud", TSC), the same for every quantity so that mapping and interpolation are
+// adjoint (what a parcel deposits at a node is what it reads back from that node).
+//
+// A lattice is a set of nodes  x_n = origin + (i, j, k) h,  0 <= i < n[0] etc.: the cell
+// centres of the MAC grid, or the faces of one velocity component. For a point x the
+// kernel has 3 nodes per axis; with s = (x_a - origin_a)/h, i0 = round(s), t = s - i0:
+//     w(i0-1) = (1/2 - t)^2 / 2,   w(i0) = 3/4 - t^2,   w(i0+1) = (1/2 + t)^2 / 2,
+// a partition of unity (sum 1), C1 in x, support 3h. Nodes outside the lattice are folded
+// back: wrapped on periodic axes, clamped to the nearest boundary node otherwise. Weights
+// are never dropped, so every deposit conserves its total exactly (to round-off).
+//   reads  nothing global; pure functions of the lattice and the point.
+#pragma once
+#include <array>
+
+#include "core/vec3.hpp"
+#include "fluid/mac_grid.hpp"
+
+namespace cgdem::coupling {
+
+struct Lattice {
+  Vec3 origin{};              // node (0,0,0) [m]
+  double h = 1;               // node spacing [m]
+  std::array<int, 3> n{};     // nodes per axis
+  std::array<bool, 3> periodic{false, false, false};
+};
+
+// Cell centres of the grid.
+Lattice cell_lattice(const fluid::MacGrid& g, std::array<bool, 3> periodic);
+// Faces of velocity component d. On a periodic axis d the face n is the image of face 0
+// and is not a node (copy it after depositing: sync_periodic_face).
+Lattice face_lattice(const fluid::MacGrid& g, int d, std::array<bool, 3> periodic);
+
+// The 27 nodes and weights of one point: node (idx[0][a], idx[1][b], idx[2][c]) has
+// weight w[0][a] w[1][b] w[2][c].
+struct Stencil {
+  std::array<std::array<int, 3>, 3> idx;
+  std::array<std::array<double, 3>, 3> w;
+};
+
+Stencil tsc_stencil(const Lattice& L, const Vec3& x);
+
+// f(node) += value * weight(node) for the 27 nodes.
+void deposit(const Stencil& s, double value, fluid::Field& f);
+// sum over the 27 nodes of weight(node) f(node).
+double interpolate(const Stencil& s, const fluid::Field& f);
+// Face field of component d on a periodic axis d: face n := face 0.
+void sync_periodic_face(int d, std::array<bool, 3> periodic, fluid::Field& f);
+
+}  // namespace cgdem::coupling
