@@ -25,17 +25,14 @@ int CoupledSolver::substeps() const {
 
 void CoupledSolver::advance_particles(int n_sub) {
   Particles& p = dem_.particles();
-  if (!params_.move_particles) {
-    p.v_avg = p.v;
-    dem_.set_time(dem_.time() + n_sub * dem_.params().dt);
+  const double dt_f = n_sub * dem_.params().dt;
+  if (!params_.move_particles) {  // held in place: the drag impulse of a fixed velocity
+    for (size_t i = 0; i < p.size(); ++i) p.j_drag[i] = (dt_f * p.drag[i]) * (p.u_fluid[i] - p.v[i]);
+    dem_.set_time(dem_.time() + dt_f);
     return;
   }
-  std::fill(p.v_avg.begin(), p.v_avg.end(), Vec3{});
-  const double w = 1.0 / n_sub;
-  for (int s = 0; s < n_sub; ++s) {
-    dem_.step();  // may re-sort or remove particles: v_avg moves with them
-    for (size_t i = 0; i < p.size(); ++i) p.v_avg[i] += w * p.v[i];
-  }
+  std::fill(p.j_drag.begin(), p.j_drag.end(), Vec3{});
+  for (int s = 0; s < n_sub; ++s) dem_.step();  // kicks add to j_drag (which moves with re-sorts)
 }
 
 CoupledStepStats CoupledSolver::step() {
@@ -51,9 +48,12 @@ CoupledStepStats CoupledSolver::step() {
   { auto t = timers_.scope(t_map_);
     void_stats_ = ex_.void_fraction(p, air_.eps); }                   // 3. eps^{n+1}
   { auto t = timers_.scope(t_deposit_);
-    if (params_.feedback) ex_.parcels_to_air(p, src_);                // 4. K, Kv (eq. 14)
+    if (params_.feedback) ex_.parcels_to_air(p, st.dt_fluid, src_);   // 4. K, Kv (eq. 14)
     else src_ = {}; }
   st.fluid = fluid_.advance(air_, dem_.scene().at(t_end), src_, st.dt_fluid);  // 5. air
+  if (params_.move_particles) {
+    auto t = timers_.scope(t_gather_);
+    ex_.correct_parcels(air_, st.dt_fluid, p); }                       // 6. end-of-step forces
   air_.t = t_end;
   dem_.set_time(t_end);  // removes the round-off of N additions of dt_DEM
   st.void_fraction = void_stats_;

@@ -5,12 +5,15 @@
 //                       drag coefficient c_p = V beta/(1-eps) (eqs. 8-11, ORIGINAL d_O) and
 //                       f_ext = -V grad p, held fixed over the step
 //   2. DEM substeps     N velocity-Verlet steps with contacts, walls, gravity, f_ext and the
-//                       drag c_p (u_f - v) integrated implicitly in each kick; the mean
-//                       parcel velocity vbar_p over the step is accumulated
+//                       drag c_p (u_f - v) integrated implicitly in each kick; the drag
+//                       impulse J_p each parcel receives is accumulated
 //   3. void fraction    eps^{n+1} from the parcel positions at t^{n+1} (kernel mapping)
-//   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w c_p vbar_p / V_cell   (eq. 14)
+//   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w (c_p u_f - J_p/dt_f) / V_cell (eq. 14)
 //   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
 //                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
+//   6. correction       each parcel receives the change of its air forces over the step,
+//                       dt_f [c_p (u^{n+1} - u_f) - V (grad p^{n+1} - grad p^n)]: the drag
+//                       exchange conserves momentum exactly (exchange.hpp)
 // Both phases treat the drag implicitly, so dt_f may exceed the air's drag relaxation time
 // eps rho_f/beta (~1e-5 s in a packed bed) by orders of magnitude.
 //

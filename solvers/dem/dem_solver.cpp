@@ -44,7 +44,9 @@ void DemSolver::kick(double h) {
       const double c = p_.drag[i];
       const Vec3 v1 = (1.0 / (1.0 + hm * c)) * (v0 + hm * (p_.force[i] + c * p_.u_fluid[i]));
       // Work of this kick's air impulse, exact for the kinetic energy it changes.
-      p_.w_fluid[i] += dot(h * (p_.f_ext[i] + c * (p_.u_fluid[i] - v1)), 0.5 * (v0 + v1));
+      const Vec3 j = (h * c) * (p_.u_fluid[i] - v1);
+      p_.j_drag[i] += j;
+      p_.w_fluid[i] += dot(h * p_.f_ext[i] + j, 0.5 * (v0 + v1));
       p_.v[i] = v1;
       p_.omega[i] += (h * p_.inv_inertia[i]) * p_.torque[i];
     }

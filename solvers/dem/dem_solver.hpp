@@ -75,7 +75,8 @@ class DemSolver {
   // in a fixed order; includes removed particles).
   double fluid_work() const;
   // Air forces: when on, the kick integrates the linear drag drag (u_fluid - v) implicitly
-  // (Particles::drag, u_fluid set by the coupling) and books its work and f_ext's.
+  // (Particles::drag, u_fluid set by the coupling), adds the drag impulse to j_drag and
+  // books its work and f_ext's in w_fluid.
   void enable_air_forces(bool on) { air_forces_ = on; }
   long removed() const { return removed_; }      // particles that left the domain
   long neighbor_builds() const { return nl_.builds; }

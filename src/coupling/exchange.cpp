@@ -38,8 +38,7 @@ VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
   return st;
 }
 
-void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const {
-  // Face gradients of p, with the domain-side ghosts of the air's boundary conditions.
+std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState& air) const {
   fluid::Field pg = air.p;
   fluid::fill_scalar_ghosts(g_, params_.bc, pg, fluid::ScalarKind::Pressure);
   std::array<fluid::Field, 3> grad;
@@ -52,25 +51,50 @@ void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const 
         for (int i = 0; i < e[0]; ++i)
           grad[d](i, j, k) = (pg(i, j, k) - pg(i - u[0], j - u[1], k - u[2])) / g_.dx;
   }
+  return grad;
+}
+
+Exchange::AirSample Exchange::sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad,
+                                     const Vec3& x) const {
+  AirSample a;
+  const Stencil sc = tsc_stencil(cells_, x);
+  a.eps = interpolate(sc, air.eps);
+  for (int d = 0; d < 3; ++d) {
+    a.u[d] = interpolate(tsc_stencil(faces_[d], x), air.vel(d));
+    a.grad_p[d] = interpolate_cell_faces(sc, d, grad[d]);
+  }
+  return a;
+}
+
+void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const {
+  const auto grad = pressure_gradient(air);
   const int n = static_cast<int>(p.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
     const int s = p.species[i];
-    const double eps = interpolate(tsc_stencil(cells_, p.x[i]), air.eps);
-    Vec3 uf, gp;
-    for (int d = 0; d < 3; ++d) {
-      const Stencil st = tsc_stencil(faces_[d], p.x[i]);
-      uf[d] = interpolate(st, air.vel(d));
-      gp[d] = interpolate(st, grad[d]);
-    }
-    const double slip = norm(uf - p.v[i]);
-    p.u_fluid[i] = uf;
-    p.drag[i] = volume_[s] * beta_over_solid(params_.law, eps, slip, d_original_[s], params_.air);  // eq. (8)
-    p.f_ext[i] = -volume_[s] * gp;
+    const AirSample a = sample(air, grad, p.x[i]);
+    const double slip = norm(a.u - p.v[i]);
+    p.u_fluid[i] = a.u;
+    p.drag[i] = volume_[s] * beta_over_solid(params_.law, a.eps, slip, d_original_[s], params_.air);  // eq. (8)
+    p.f_ext[i] = -volume_[s] * a.grad_p;
   }
 }
 
-void Exchange::parcels_to_air(const Particles& p, fluid::Sources& src) const {
+void Exchange::correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const {
+  const auto grad = pressure_gradient(air);
+  const int n = static_cast<int>(p.size());
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (int i = 0; i < n; ++i) {
+    const AirSample a = sample(air, grad, p.x[i]);
+    const Vec3 dj = dt_f * (p.drag[i] * (a.u - p.u_fluid[i]) - (volume_[p.species[i]] * a.grad_p + p.f_ext[i]));
+    const Vec3 v0 = p.v[i];
+    p.v[i] += p.inv_mass[i] * dj;
+    p.j_drag[i] += dt_f * p.drag[i] * (a.u - p.u_fluid[i]);
+    p.w_fluid[i] += dot(dj, 0.5 * (v0 + p.v[i]));
+  }
+}
+
+void Exchange::parcels_to_air(const Particles& p, double dt_f, fluid::Sources& src) const {
   const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
   for (int d = 0; d < 3; ++d) {
     src.K[d] = fluid::make_face_field(g_, d);
@@ -79,10 +103,11 @@ void Exchange::parcels_to_air(const Particles& p, fluid::Sources& src) const {
   for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
     const double c = p.drag[i] * inv_vc;
     if (c == 0) continue;
+    const Vec3 cv = inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i]);  // c vbar
     for (int d = 0; d < 3; ++d) {
       const Stencil st = tsc_stencil(faces_[d], p.x[i]);
       deposit(st, c, src.K[d]);
-      deposit(st, c * p.v_avg[i][d], src.Kv[d]);
+      deposit(st, cv[d], src.Kv[d]);
     }
   }
   for (int d = 0; d < 3; ++d) {

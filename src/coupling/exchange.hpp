@@ -5,16 +5,24 @@
 //                   (sum_c V_s(c) = sum_p V_p exactly; cells clipped at eps_min are counted)
 //   air at parcel   u_f(x_p) = sum_f w_f(x_p) u(f) per component on its face lattice,
 //                   eps(x_p) likewise from the cells, grad p(x_p) from the face gradients
-//                   (p(c) - p(c-1))/dx
+//                   (p(c) - p(c-1))/dx read through the parcel's CELL weights (each cell
+//                   passes half its weight to each of its two d-faces): the parcels then
+//                   feel exactly the sum_f (1 - E_f) grad p_f dx^3 that the air's E grad p
+//                   leaves out (E_f = face mean of eps, as the air solver uses it)
 //   parcel forces   drag   c_p = V_p beta/(1-eps)(eps(x_p), |u_f - v_p|, d_O)   eq. (8)
 //                   F_D = c_p (u_f - v_p)   (integrated implicitly by DemSolver::kick)
 //                   f_ext = -V_p grad p(x_p)
 //   air reaction    K(f)  = sum_p w_f(x_p) c_p / dx^3,   Kv(f) = sum_p w_f(x_p) c_p vbar_p / dx^3
 //                   so that the air feels -f = K (vbar - u) per volume (eq. 14, implicit in
-//                   u); vbar_p = Particles::v_avg, the parcel's mean velocity over the step.
-//
-// Because interpolation and deposit use the same weights, the drag the air receives is
-// minus the sum of what the parcels receive (up to the change of u over one fluid step).
+//                   u); c_p vbar_p = c_p u_f - J_p/dt_f with J_p the drag impulse the parcel
+//                   received over the step (Particles::j_drag): vbar is the drag-weighted
+//                   mean parcel velocity, so the air gets exactly -J_p when u stays u_f.
+//   end-of-step     the parcels then receive the difference between the air forces at the
+//   correction      end of the step and those they were given:
+//                   dv_p = dt_f [c_p (u^{n+1}(x_p) - u_f) - V_p (grad p^{n+1}(x_p) - grad p^n)]/m_p
+//                   which makes the drag exchange exactly momentum-conserving (deposit and
+//                   interpolation use the same weights: sum_f w_f K u = sum_p c_p u(x_p)),
+//                   i.e. implicit in both phases.
 // Deposits run serially in particle order (deterministic); gathers run in parallel.
 #pragma once
 #include <vector>
@@ -49,13 +57,25 @@ class Exchange {
   VoidStats void_fraction(const Particles& p, fluid::Field& eps) const;
   // Sets p.u_fluid, p.drag and p.f_ext from the air state (u, p, eps of `air`).
   void air_to_parcels(const fluid::FluidState& air, Particles& p) const;
-  // K and Kv of src (resized to the face layout) from p.drag and p.v_avg.
-  void parcels_to_air(const Particles& p, fluid::Sources& src) const;
+  // K and Kv of src (resized to the face layout) from p.drag, p.u_fluid and p.j_drag
+  // accumulated over a fluid step of dt_f.
+  void parcels_to_air(const Particles& p, double dt_f, fluid::Sources& src) const;
+  // End-of-step correction of the parcel velocities (and their fluid work) from the air at
+  // t^{n+1}; reads p.drag, p.u_fluid, p.f_ext as set by air_to_parcels at t^n.
+  void correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const;
 
   const ExchangeParams& params() const { return params_; }
   const std::array<bool, 3>& periodic() const { return periodic_; }
 
  private:
+  struct AirSample {
+    double eps;
+    Vec3 u, grad_p;
+  };
+  // Face gradients of the pressure (domain ghosts from the boundary conditions).
+  std::array<fluid::Field, 3> pressure_gradient(const fluid::FluidState& air) const;
+  AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const Vec3& x) const;
+
   fluid::MacGrid g_;
   ExchangeParams params_;
   std::array<bool, 3> periodic_{};

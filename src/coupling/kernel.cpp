@@ -57,6 +57,19 @@ double interpolate(const Stencil& s, const fluid::Field& f) {
   return sum;
 }
 
+double interpolate_cell_faces(const Stencil& s, int d, const fluid::Field& f) {
+  double sum = 0;
+  const auto u = fluid::unit(d);
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b)
+      for (int a = 0; a < 3; ++a) {
+        const int i = s.idx[0][a], j = s.idx[1][b], k = s.idx[2][c];
+        const double w = s.w[0][a] * s.w[1][b] * s.w[2][c];
+        sum += 0.5 * w * (f(i, j, k) + f(i + u[0], j + u[1], k + u[2]));
+      }
+  return sum;
+}
+
 void sync_periodic_face(int d, std::array<bool, 3> periodic, fluid::Field& f) {
   if (!periodic[d]) return;
   const auto e = f.extent();

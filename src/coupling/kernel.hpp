@@ -44,6 +44,12 @@ Stencil tsc_stencil(const Lattice& L, const Vec3& x);
 void deposit(const Stencil& s, double value, fluid::Field& f);
 // sum over the 27 nodes of weight(node) f(node).
 double interpolate(const Stencil& s, const fluid::Field& f);
+// A d-face field read with the weights a cell-centred deposit gives the faces when face
+// values are the mean of their two cells (face i between cells i-1 and i):
+//   sum_cells w_c (f(face c) + f(face c+1)) / 2.
+// Used for the pressure-gradient force so that the parcels feel exactly the (1 - E) grad p
+// that the air's eps-weighted pressure term leaves out (E = face mean of eps).
+double interpolate_cell_faces(const Stencil& cell_stencil, int d, const fluid::Field& f);
 // Face field of component d on a periodic axis d: face n := face 0.
 void sync_periodic_face(int d, std::array<bool, 3> periodic, fluid::Field& f);
 

@@ -13,7 +13,7 @@ void Particles::add(int64_t pid, int sp, const Species& s, const Vec3& pos, cons
   f_ext.emplace_back();
   drag.push_back(0);
   u_fluid.emplace_back();
-  v_avg.push_back(vel);
+  j_drag.emplace_back();
   radius.push_back(0.5 * s.diameter());
   inv_mass.push_back(1.0 / s.mass());
   inv_inertia.push_back(1.0 / s.inertia());
@@ -43,7 +43,7 @@ void Particles::reorder(const std::vector<int>& order) {
   apply(f_ext, order);
   apply(drag, order);
   apply(u_fluid, order);
-  apply(v_avg, order);
+  apply(j_drag, order);
   apply(radius, order);
   apply(inv_mass, order);
   apply(inv_inertia, order);

@@ -20,7 +20,7 @@ struct Particles {
   // kick (DemSolver::kick); drag = 0 means no air.
   std::vector<double> drag;         // V beta / (1 - eps) [kg/s], paper eq. (8)
   std::vector<Vec3> u_fluid;        // air velocity at the particle [m/s]
-  std::vector<Vec3> v_avg;          // mean velocity over the current fluid step (coupling) [m/s]
+  std::vector<Vec3> j_drag;         // drag impulse received since the coupling reset it [N s]
   std::vector<double> radius, inv_mass, inv_inertia;
   // Running energy totals per particle (summed in a fixed order for diagnostics, so the
   // result does not depend on the number of threads) [J].
