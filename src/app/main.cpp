@@ -9,7 +9,9 @@
 #include <cstdio>
 
 #include "app/dem_case.hpp"
-#include "app/run_dem.hpp"
+#include "app/air_case.hpp"
+#include "app/die_diagnostics.hpp"
+#include "app/run_case.hpp"
 #include "bench/bench.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
@@ -23,8 +25,10 @@ int run_command(const std::string& file, const std::vector<std::string>& sets, c
   for (const auto& s : sets) cfg.apply_override(s);
   if (!output.empty()) cfg.apply_override("output.dir=\"" + output + "\"");
   app::DemCase c = app::read_dem_case(cfg);
+  app::AirCase air = app::read_air_case(cfg, c.dem);
+  app::DiagnosticsSpec diag = app::read_diagnostics(cfg);
   cfg.check_unused();
-  return app::run_dem_case(c, {file, cfg.resolved_toml()});
+  return app::run_case(c, air, diag, {file, cfg.resolved_toml()});
 }
 
 int parse_grid(const std::string& g, cgdem::bench::PressureBenchArgs& a) {

@@ -1,0 +1,79 @@
+#include "app/air_case.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace cgdem::app {
+
+namespace {
+
+fluid::BcType side_type(const Section& s, const std::string& key, const std::string& def) {
+  const std::string t = s.string_or(key, def, {"wall", "open", "periodic"});
+  return t == "wall" ? fluid::BcType::Wall : (t == "open" ? fluid::BcType::Open : fluid::BcType::Periodic);
+}
+
+}  // namespace
+
+AirCase read_air_case(Config& cfg, const DemParams& dem) {
+  AirCase a;
+  Section root = cfg.root();
+  if (!root.has("air")) return a;
+  Section s = root.section("air");
+  a.enabled = s.boolean_or("enabled", true);
+
+  const double dx = s.number_or("dx", 0.6e-3, Range::positive());
+  const Vec3 size = dem.domain.hi - dem.domain.lo;
+  std::array<int, 3> n{};
+  for (int d = 0; d < 3; ++d) {
+    n[d] = static_cast<int>(std::lround(size[d] / dx));
+    if (n[d] < 2 || std::fabs(n[d] * dx - size[d]) > 1e-9 * size[d])
+      s.fail("dx", fmt::format("the domain's {} extent {:g} m is not a whole number (>= 2) of cells of {:g} m",
+                               "xyz"[d], size[d], dx));
+  }
+  a.grid.nx = n[0], a.grid.ny = n[1], a.grid.nz = n[2];
+  a.grid.dx = dx;
+  a.grid.origin = dem.domain.lo;
+
+  fluid::FluidParams& f = a.fluid;
+  f.rho = s.number_or("density", 1.0, Range::positive());
+  f.mu = s.number_or("viscosity", 1.8e-5, Range::positive());
+  f.gravity = dem.gravity;
+  f.cfl = s.number_or("cfl", f.cfl, Range::open_closed(0, 1));
+  f.time_order = static_cast<int>(s.integer_or("time_order", f.time_order, Range::closed(1, 2)));
+  f.ibm_samples = static_cast<int>(s.integer_or("ibm_samples", f.ibm_samples, Range::closed(1, 16)));
+  f.advection = fluid::Advection::VanLeer;
+
+  a.coupled.dt_fluid_max = s.number_or("dt_max", 1e-4, Range::positive());
+  if (a.coupled.dt_fluid_max < dem.dt * (1 - 1e-12))
+    s.fail("dt_max", fmt::format("{:g} s is shorter than the DEM step time.dt = {:g} s", a.coupled.dt_fluid_max, dem.dt));
+  f.dt_max = a.coupled.dt_fluid_max;
+  a.coupled.feedback = s.boolean_or("feedback", true);
+
+  Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
+  f.pressure.method = ps.string_or("method", "pcg-mg2", {"pcg-fft", "pcg-mg", "pcg-mg2", "cg", "cholmod"});
+  f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range::positive());
+  f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::at_least(1)));
+
+  Section bs = s.optional_section("boundary").value_or(Section(&cfg, s.key_path("boundary")));
+  const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  const double p_open = bs.number_or("open_pressure", 0.0);
+  for (int side = 0; side < 6; ++side) {
+    const int axis = side / 2;
+    const std::string def = dem.periodic[axis] ? "periodic" : (side == 5 ? "open" : "wall");
+    f.bc[side].type = side_type(bs, names[side], def);
+    f.bc[side].pressure = p_open;
+    if ((f.bc[side].type == fluid::BcType::Periodic) != dem.periodic[axis])
+      bs.fail(names[side], fmt::format("must be \"periodic\" exactly when the {} axis is periodic in domain.periodic",
+                                       "xyz"[axis]));
+  }
+
+  a.exchange.law = coupling::parse_drag_law(s.string_or("drag", "ergun-wen-yu", {"ergun-wen-yu", "wen-yu", "ergun"}));
+  a.exchange.air = {f.rho, f.mu};
+  a.exchange.eps_min = s.number_or("eps_min", 0.2, Range{0.0, 1.0, true, true});
+  a.exchange.bc = f.bc;
+  f.validate();
+  return a;
+}
+
+}  // namespace cgdem::app

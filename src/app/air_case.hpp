@@ -1,0 +1,41 @@
+// The [air] section of a case: the air phase and its coupling to the parcels. A case
+// without [air] (or with air.enabled = false) runs in vacuum, so the effect of the air can
+// be isolated by switching one key.
+//
+//   [air]
+//   enabled = true            # false: the same case without air
+//   dx = 0.6e-3               # m, cubic cells; the domain must be a whole number of cells
+//   density = 1.0             # kg/m^3
+//   viscosity = 1.8e-5        # Pa s
+//   dt_max = 1e-4             # s, largest fluid step (also limited by CFL and viscosity);
+//                             # a whole number of DEM steps
+//   cfl = 0.5
+//   time_order = 2            # 1: forward Euler predictor, 2: Heun
+//   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter
+//   eps_min = 0.2             # lower bound of the mapped void fraction
+//   feedback = true           # false: one-way coupling (the air ignores the parcels)
+//   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha
+//   [air.pressure]  method = "pcg-mg2" (fastest on the die-filling grid: docs/pressure.md),
+//                   tolerance = 1e-8, max_iterations = 500
+//   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
+//                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa)
+#pragma once
+#include "core/config.hpp"
+#include "coupling/exchange.hpp"
+#include "solvers/coupled/coupled_solver.hpp"
+#include "solvers/dem/dem_solver.hpp"
+
+namespace cgdem::app {
+
+struct AirCase {
+  bool enabled = false;
+  fluid::MacGrid grid;
+  fluid::FluidParams fluid;
+  CoupledParams coupled;
+  coupling::ExchangeParams exchange;
+};
+
+// Reads [air] (if present) against the DEM domain, time step and gravity.
+AirCase read_air_case(Config& cfg, const DemParams& dem);
+
+}  // namespace cgdem::app

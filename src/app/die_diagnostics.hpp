@@ -1,0 +1,87 @@
+// Die-filling diagnostics (the observables of the paper, physics.md section 5), read from
+// the parcels and the air while a case runs:
+//
+//   mass in the die   M(t) = sum of parcel masses whose centre is below the table top
+//                     inside the die mouth's x-y footprint [kg]
+//   transfer rate     Mdot(t) = (M(t) - M(t - w)) / w, a backward difference over the
+//                     window w = diagnostics.rate_window (default 5 ms) [kg/s]
+//   impacts           a parcel "impacts" the first time its lowest point comes within
+//                     diagnostics.impact_band (default: a quarter of the largest parcel diameter)
+//                     of the die floor under it; its downward speed then is recorded. The
+//                     powder front reaches the floor at the first impact; the impact
+//                     velocity of the paper is the mass-weighted mean downward speed of the
+//                     impacts within diagnostics.impact_window (default 5 ms) after it.
+//   pressure cells    gauge pressure averaged over the air cells whose centres lie in each
+//                     configured box (A, B, C), gauge = p - p_open - rho_f g.(x - x_open)
+//                     (the still-air hydrostatic pressure removed) [Pa]
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/config.hpp"
+#include "fluid/fluid_state.hpp"
+#include "geometry/die_filling.hpp"
+#include "particles/particles.hpp"
+
+namespace cgdem::app {
+
+struct PressureCell {
+  std::string name;
+  Vec3 lo, hi;  // [m]
+};
+
+struct DiagnosticsSpec {
+  bool enabled = false;
+  geometry::DieFillingParams die;
+  double rate_window = 5e-3;    // [s]
+  double impact_band = 0;       // [m] above the floor (0: a quarter of the largest parcel diameter)
+  double impact_window = 5e-3;  // [s]
+  std::vector<PressureCell> cells;
+};
+
+// [diagnostics] (enabled by default when [walls.die_filling] exists):
+//   rate_window, impact_band, impact_window, [[diagnostics.pressure_cell]] name/min/max
+// (default cells A, B, C: see die_diagnostics.cpp).
+DiagnosticsSpec read_diagnostics(Config& cfg);
+
+struct DiagnosticsRow {
+  double t = 0, mass_in_die = 0, transfer_rate = 0;
+  std::vector<double> pressure;  // per cell, NaN without air
+  long impacts = 0;              // parcels that have reached the floor so far
+};
+
+class DieDiagnostics {
+ public:
+  DieDiagnostics(DiagnosticsSpec spec, std::vector<double> species_mass, std::vector<double> species_diameter);
+
+  // Every fluid step (or every ~0.1 ms in vacuum): impacts and the mass history.
+  void observe(double t, const Particles& p);
+  // A row for diagnostics.csv (air may be null).
+  DiagnosticsRow row(double t, const Particles& p, const fluid::FluidState* air, const fluid::FluidParams* fp) const;
+  std::string csv_header() const;
+  std::string csv_line(const DiagnosticsRow& r) const;
+
+  struct Impact {
+    int64_t id;
+    double t, speed_down, mass;
+  };
+  const std::vector<Impact>& impacts() const { return impacts_; }
+  // Time of the first impact and the mass-weighted mean downward speed within the window.
+  std::optional<std::pair<double, double>> front_impact() const;
+
+ private:
+  double mass_in_die(const Particles& p) const;
+  double floor_z(double x) const;
+  bool in_mouth(const Vec3& x) const;
+
+  DiagnosticsSpec spec_;
+  std::vector<double> mass_, diameter_;
+  double band_ = 0;
+  std::vector<bool> hit_;                     // by parcel id
+  std::vector<Impact> impacts_;
+  std::vector<std::pair<double, double>> history_;  // (t, M) for the rate
+};
+
+}  // namespace cgdem::app

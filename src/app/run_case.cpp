@@ -1,0 +1,268 @@
+#include "app/run_case.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "core/error.hpp"
+#include "core/revision.hpp"
+#include "core/timers.hpp"
+#include "io/atomic_file.hpp"
+#include "io/grid_snapshot_series.hpp"
+#include "io/particle_h5.hpp"
+#include "io/snapshot_series.hpp"
+#include "particles/particle_io.hpp"
+
+namespace cgdem::app {
+
+namespace {
+
+// Stops the run on NaN/Inf or a runaway speed, naming the particle, step and time.
+void check_particles(const DemSolver& dem, double max_speed) {
+  const Particles& p = dem.particles();
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3 &x = p.x[i], &v = p.v[i];
+    bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
+                  std::isfinite(v.y) && std::isfinite(v.z);
+    if (!finite || norm(v) > max_speed)
+      throw RunError(fmt::format(
+          "step {}, t = {:.6g} s: particle id {} has {} (x = [{:.4g}, {:.4g}, {:.4g}] m, |v| = {:.4g} m/s; "
+          "output.max_speed = {:g}). The run stopped; the last good state is last_good.h5 in the output folder.",
+          dem.steps(), dem.time(), p.id[i], finite ? "a runaway velocity" : "a non-finite position or velocity",
+          x.x, x.y, x.z, norm(v), max_speed));
+  }
+}
+
+// Stops the run on a non-finite or runaway air velocity or pressure, naming the cell.
+void check_air(const fluid::FluidState& air, double max_speed, long step) {
+  const auto& g = air.grid;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const double u = air.u(i, j, k), v = air.v(i, j, k), w = air.w(i, j, k), p = air.p(i, j, k);
+        const char* what = nullptr;
+        if (!std::isfinite(p)) what = "a non-finite pressure";
+        else if (!(std::fabs(u) <= max_speed && std::fabs(v) <= max_speed && std::fabs(w) <= max_speed))
+          what = "a non-finite or runaway air velocity";
+        if (!what) continue;
+        const Vec3 x = g.cell_centre(i, j, k);
+        throw RunError(fmt::format(
+            "fluid step {}, t = {:.6g} s: cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m has {} (u = [{:.4g}, {:.4g}, "
+            "{:.4g}] m/s, p = {:.4g} Pa; output.max_speed = {:g}). The run stopped; the last good state is "
+            "last_good.h5 in the output folder.",
+            step, air.t, i, j, k, x.x, x.y, x.z, what, u, v, w, p, max_speed));
+      }
+}
+
+// Particles whose centre lies inside a wall (tunnelled): counted, not hidden.
+long count_inside_walls(const DemSolver& dem) {
+  if (dem.scene().empty()) return 0;
+  auto frame = dem.scene().at(dem.time());
+  long n = 0;
+  for (const auto& x : dem.particles().x)
+    if (frame.phi(x) < 0) ++n;
+  return n;
+}
+
+std::string energy_header() {
+  return "t,E_kin_trans,E_kin_rot,E_pot,E_elastic,E_diss_damping,E_diss_friction,W_walls,W_air,E_balance,"
+         "px,py,pz,mass,particles,removed,inside_walls";
+}
+
+// Cell-centred air fields for a snapshot: eps, p, wall fraction alpha, velocity.
+void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
+                        const fluid::FluidSolver& fluid) {
+  const auto& g = air.grid;
+  const size_t n = static_cast<size_t>(g.cells());
+  io::CellScalars s{{"eps", std::vector<double>(n)}, {"p", std::vector<double>(n)}, {"alpha", std::vector<double>(n)}};
+  io::CellVectors v{{"u", {std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)}}};
+  const auto& alpha = fluid.ibm().alpha_cell;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t c = static_cast<size_t>(i + g.nx * (j + static_cast<long>(g.ny) * k));
+        s["eps"][c] = air.eps(i, j, k);
+        s["p"][c] = air.p(i, j, k);
+        s["alpha"][c] = alpha.empty() ? 0.0 : alpha(i, j, k);
+        v["u"][0][c] = 0.5 * (air.u(i, j, k) + air.u(i + 1, j, k));
+        v["u"][1][c] = 0.5 * (air.v(i, j, k) + air.v(i, j + 1, k));
+        v["u"][2][c] = 0.5 * (air.w(i, j, k) + air.w(i, j, k + 1));
+      }
+  series.write(step, air.t, g.nx, g.ny, g.nz, g.origin, Vec3{g.dx, g.dx, g.dx}, s, v);
+}
+
+}  // namespace
+
+int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& diag_spec, const RunInfo& info) {
+  namespace fs = std::filesystem;
+  fs::create_directories(c.output.dir);
+  const fs::path out(c.output.dir);
+  const std::string case_dir = fs::path(info.case_file).parent_path().string();
+  io::write_file_atomic((out / "config.resolved.toml").string(),
+                        fmt::format("# cgdem {} resolved configuration of {}\n{}", kGitRevision, info.case_file,
+                                    info.resolved_config));
+  io::Attributes attrs{{"cgdem_revision", kGitRevision}, {"config", info.resolved_config}};
+
+  Stopwatch setup_clock;
+  auto dem = build_solver(c, case_dir.empty() ? "." : case_dir);
+  const bool with_air = air_case.enabled;
+  fluid::FluidState air;
+  std::unique_ptr<fluid::FluidSolver> fluid;
+  std::unique_ptr<CoupledSolver> coupled;
+  if (with_air) {
+    air = fluid::make_fluid_state(air_case.grid);
+    fluid = std::make_unique<fluid::FluidSolver>(air_case.grid, air_case.fluid);
+    coupled = std::make_unique<CoupledSolver>(*dem, *fluid, air,
+                                              coupling::Exchange(air_case.grid, c.species, air_case.exchange),
+                                              air_case.coupled);
+  }
+  std::vector<double> sp_mass, sp_d;
+  for (const auto& s : c.species) sp_mass.push_back(s.mass()), sp_d.push_back(s.diameter());
+  DieDiagnostics diag(diag_spec, sp_mass, sp_d);
+
+  fmt::print("cgdem {}: {} particles, {} species, {} wall parts, dt = {:g} s, t = {:g} .. {:g} s\n", kGitRevision,
+             dem->particles().size(), c.species.size(), dem->scene().parts().size(), c.dem.dt, c.t_start, c.t_end);
+  if (with_air)
+    fmt::print("air: {} x {} x {} cells of {:g} m, fluid step <= {:g} s, pressure {} (tol {:g}), {}-way coupling\n",
+               air_case.grid.nx, air_case.grid.ny, air_case.grid.nz, air_case.grid.dx, air_case.coupled.dt_fluid_max,
+               air_case.fluid.pressure.method, air_case.fluid.pressure.rel_tol, air_case.coupled.feedback ? "two" : "one");
+  else
+    fmt::print("air: none (vacuum)\n");
+  fmt::print("shortest collision time {:.4g} s ({:.1f} steps); set-up {:.2f} s\n", dem->min_collision_time(),
+             dem->min_collision_time() / c.dem.dt, setup_clock.seconds());
+
+  io::SnapshotSeries snapshots(c.output.dir, "particles", attrs);
+  std::unique_ptr<io::GridSnapshotSeries> air_snapshots;
+  if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs);
+  auto open_csv = [&](const std::string& name, const std::string& header) {
+    const std::string path = (out / name).string();
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw Error("cannot write " + path);
+    std::fprintf(f, "# cgdem %s, case %s\n%s\n", kGitRevision, info.case_file.c_str(), header.c_str());
+    return f;
+  };
+  std::FILE* energy = open_csv("energy.csv", energy_header());
+  std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
+  const std::string last_good = (out / "last_good.h5").string();
+
+  long fluid_steps = 0, pressure_iterations = 0, unconverged = 0;
+  double max_div = 0;
+  auto write_energy = [&]() {
+    EnergyBudget e = dem->energy();
+    e.work_fluid = dem->fluid_work();
+    std::fprintf(energy, "%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%zu,%ld,%ld\n",
+                 dem->time(), e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic,
+                 e.dissipated_damping, e.dissipated_friction, e.work_walls, e.work_fluid, e.balance(), e.momentum.x,
+                 e.momentum.y, e.momentum.z, e.mass, dem->particles().size(), dem->removed(), count_inside_walls(*dem));
+    std::fflush(energy);
+    if (diag_csv) {
+      std::fprintf(diag_csv, "%s\n",
+                   diag.csv_line(diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr,
+                                          with_air ? &air_case.fluid : nullptr)).c_str());
+      std::fflush(diag_csv);
+    }
+  };
+  auto check_health = [&]() {
+    check_particles(*dem, c.output.max_speed);
+    if (with_air) check_air(air, c.output.max_speed, fluid_steps);
+  };
+  auto write_snapshot = [&]() {
+    io::ParticleTable t = to_table(dem->particles());
+    snapshots.write(dem->steps(), dem->time(), t);
+    if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), air, *fluid);
+    io::write_particles_h5(last_good, t, attrs);  // atomic: always a consistent state
+  };
+
+  check_health();
+  diag.observe(dem->time(), dem->particles());
+  write_energy();
+  write_snapshot();
+  const bool tty = isatty(STDOUT_FILENO);
+  const double span = c.t_end - c.t_start, tiny = 1e-9 * c.dem.dt;
+  double next_energy = c.t_start + c.output.energy_interval, next_snap = c.t_start + c.output.snapshot_interval;
+  const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));  // vacuum: diagnostics every 0.1 ms
+  Stopwatch clock;
+  double last_progress = 0;
+  long particle_steps = 0;
+  while (dem->time() < c.t_end - tiny) {
+    if (with_air) {
+      const long before = dem->steps();
+      CoupledStepStats st = coupled->step();
+      particle_steps += (dem->steps() - before) * static_cast<long>(dem->particles().size());
+      ++fluid_steps;
+      pressure_iterations += st.fluid.pressure_iterations;
+      max_div = std::max(max_div, st.fluid.max_divergence);
+      if (!st.fluid.pressure_converged && unconverged++ == 0)
+        fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
+                   "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
+      diag.observe(dem->time(), dem->particles());
+    } else {
+      dem->step();
+      particle_steps += static_cast<long>(dem->particles().size());
+      if (dem->steps() % observe_every == 0) diag.observe(dem->time(), dem->particles());
+    }
+    const double t = dem->time();
+    const bool last = t >= c.t_end - tiny;
+    const bool snap = t >= next_snap - tiny || last;
+    if (t >= next_energy - tiny || snap) {
+      check_health();
+      write_energy();
+      while (next_energy <= t + tiny) next_energy += c.output.energy_interval;
+    }
+    if (snap) {
+      write_snapshot();
+      while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
+    }
+    const double wall = clock.seconds();
+    if ((tty && wall - last_progress > 0.5) || (!tty && wall - last_progress > c.output.progress_interval) || last) {
+      last_progress = wall;
+      const double frac = (t - c.t_start) / span, rate = particle_steps / std::max(wall, 1e-9);
+      std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t, 100 * frac,
+                                     rate, wall * (1 - frac) / std::max(frac, 1e-9));
+      if (tty) fmt::print("\r{}   ", line), std::fflush(stdout);
+      else fmt::print("{}\n", line);
+    }
+  }
+  if (tty) fmt::print("\n");
+  std::fclose(energy);
+  if (diag_csv) std::fclose(diag_csv);
+
+  if (diag_spec.enabled) {
+    std::string rows = "id,t,speed_down,mass\n";
+    for (const auto& im : diag.impacts()) rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
+    io::write_file_atomic((out / "impacts.csv").string(), rows);
+  }
+
+  const double wall = clock.seconds();
+  EnergyBudget e = dem->energy();
+  fmt::print("\n{}", dem->timers().table("per-phase time (DEM)"));
+  if (with_air) {
+    fmt::print("{}", coupled->timers().table("per-phase time (coupling)"));
+    fmt::print("{}", fluid->timers().table("per-phase time (air)"));
+    fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
+               "{:.2e} 1/s\n",
+               fluid_steps, fluid_steps ? double(pressure_iterations) / fluid_steps : 0.0, unconverged, max_div);
+  }
+  fmt::print("DEM steps {}, wall {:.1f} s, {:.3g} particle-steps/s, neighbour-list builds {}\n", dem->steps(), wall,
+             particle_steps / std::max(wall, 1e-9), dem->neighbor_builds());
+  fmt::print("particles {} (left the domain: {}, centre inside a wall: {}), solid mass {:.6g} kg\n",
+             dem->particles().size(), dem->removed(), count_inside_walls(*dem), e.mass);
+  if (diag_spec.enabled) {
+    auto front = diag.front_impact();
+    if (front)
+      fmt::print("powder front reached the die floor at t = {:.4f} s; mean impact velocity {:.3f} m/s (first {:g} s)\n",
+                 front->first, front->second, diag_spec.impact_window);
+    else
+      fmt::print("the powder has not reached the die floor yet\n");
+  }
+  fmt::print("outputs in {}: energy.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, config.resolved.toml\n",
+             c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "",
+             with_air ? ", air.xdmf (+ air_*.h5)" : "");
+  return 0;
+}
+
+}  // namespace cgdem::app
