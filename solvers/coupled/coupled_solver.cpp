@@ -11,6 +11,8 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   if (!(params_.dt_fluid_max > 0)) throw Error("coupled solver: dt_fluid_max must be > 0");
   dem_.enable_air_forces(true);
   air_.t = dem_.time();
+  fluid::update_ibm(air_.grid, dem_.scene().at(air_.t), fluid_.params().ibm_samples, walls_t0_);
+  ex_.set_walls(&walls_t0_);
   void_stats_ = ex_.void_fraction(dem_.particles(), air_.eps);
   air_.eps_old = air_.eps;
   t_gather_ = timers_.id("air -> parcels");
@@ -42,6 +44,7 @@ CoupledStepStats CoupledSolver::step() {
   const double t_end = air_.t + st.dt_fluid;
   Particles& p = dem_.particles();
 
+  if (fluid_.ibm().valid) ex_.set_walls(&fluid_.ibm());                // walls at t^n
   { auto t = timers_.scope(t_gather_);
     ex_.air_to_parcels(air_, p); }                                     // 1. u_f, c_p, f_ext at t^n
   advance_particles(st.substeps);                                     // 2. DEM substeps

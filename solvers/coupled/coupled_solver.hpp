@@ -65,6 +65,7 @@ class CoupledSolver {
   CoupledParams params_;
   fluid::Sources src_;
   coupling::VoidStats void_stats_;
+  fluid::IbmFractions walls_t0_;  // wall fractions for the first mapping (the air's own after)
   PhaseTimers timers_;
   int t_gather_, t_map_, t_deposit_;
 };

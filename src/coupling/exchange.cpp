@@ -17,12 +17,22 @@ Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species,
   for (int d = 0; d < 3; ++d) faces_[d] = face_lattice(g_, d, periodic_);
 }
 
+Weights Exchange::cell_weights(const Vec3& x, const fluid::Field& layout) const {
+  const bool w = walls_ && walls_->valid && walls_->any_solid;
+  return masked(tsc_stencil(cells_, x), w ? walls_->alpha_cell : no_alpha_, layout);
+}
+
+Weights Exchange::face_weights(int d, const Vec3& x, const fluid::Field& layout) const {
+  const bool w = walls_ && walls_->valid && walls_->any_solid;
+  return masked(tsc_stencil(faces_[d], x), w ? walls_->alpha_face[d] : no_alpha_, layout);
+}
+
 VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
   fluid::Field vs = fluid::make_cell_field(g_);
   VoidStats st;
   for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
     const double V = volume_[p.species[i]];
-    deposit(tsc_stencil(cells_, p.x[i]), V, vs);
+    deposit(cell_weights(p.x[i], vs), V, vs);
     st.parcel_volume += V;
   }
   const double vc = g_.dx * g_.dx * g_.dx;
@@ -57,11 +67,11 @@ std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState&
 Exchange::AirSample Exchange::sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad,
                                      const Vec3& x) const {
   AirSample a;
-  const Stencil sc = tsc_stencil(cells_, x);
-  a.eps = interpolate(sc, air.eps);
+  const Weights wc = cell_weights(x, air.eps);
+  a.eps = interpolate(wc, air.eps);
   for (int d = 0; d < 3; ++d) {
-    a.u[d] = interpolate(tsc_stencil(faces_[d], x), air.vel(d));
-    a.grad_p[d] = interpolate_cell_faces(sc, d, grad[d]);
+    a.u[d] = interpolate(face_weights(d, x, air.vel(d)), air.vel(d));
+    a.grad_p[d] = interpolate_cell_faces(wc, air.eps, d, grad[d]);
   }
   return a;
 }
@@ -105,7 +115,7 @@ void Exchange::parcels_to_air(const Particles& p, double dt_f, fluid::Sources& s
     if (c == 0) continue;
     const Vec3 cv = inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i]);  // c vbar
     for (int d = 0; d < 3; ++d) {
-      const Stencil st = tsc_stencil(faces_[d], p.x[i]);
+      const Weights st = face_weights(d, p.x[i], src.K[d]);
       deposit(st, c, src.K[d]);
       deposit(st, cv[d], src.Kv[d]);
     }

@@ -23,6 +23,11 @@
 //                   which makes the drag exchange exactly momentum-conserving (deposit and
 //                   interpolation use the same weights: sum_f w_f K u = sum_p c_p u(x_p)),
 //                   i.e. implicit in both phases.
+//
+// Walls: every weight is multiplied by (1 - alpha) of its node (cell or face) and the
+// weights are rescaled to sum 1 (kernel.hpp, masked): parcels next to the die floor put
+// their volume into the air cells above it, not into the floor, and drag is exchanged only
+// with faces where the air moves. Conservation and adjointness hold as before.
 // Deposits run serially in particle order (deterministic); gathers run in parallel.
 #pragma once
 #include <vector>
@@ -30,6 +35,7 @@
 #include "coupling/drag.hpp"
 #include "coupling/kernel.hpp"
 #include "fluid/fluid_state.hpp"
+#include "fluid/ibm.hpp"
 #include "particles/particles.hpp"
 #include "particles/species.hpp"
 
@@ -64,6 +70,9 @@ class Exchange {
   // t^{n+1}; reads p.drag, p.u_fluid, p.f_ext as set by air_to_parcels at t^n.
   void correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const;
 
+  // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
+  void set_walls(const fluid::IbmFractions* walls) { walls_ = walls; }
+
   const ExchangeParams& params() const { return params_; }
   const std::array<bool, 3>& periodic() const { return periodic_; }
 
@@ -75,6 +84,10 @@ class Exchange {
   // Face gradients of the pressure (domain ghosts from the boundary conditions).
   std::array<fluid::Field, 3> pressure_gradient(const fluid::FluidState& air) const;
   AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const Vec3& x) const;
+  Weights cell_weights(const Vec3& x, const fluid::Field& layout) const;
+  Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
+  const fluid::IbmFractions* walls_ = nullptr;
+  fluid::Field no_alpha_;
 
   fluid::MacGrid g_;
   ExchangeParams params_;

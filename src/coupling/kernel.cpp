@@ -57,16 +57,59 @@ double interpolate(const Stencil& s, const fluid::Field& f) {
   return sum;
 }
 
-double interpolate_cell_faces(const Stencil& s, int d, const fluid::Field& f) {
-  double sum = 0;
-  const auto u = fluid::unit(d);
+Weights flatten(const Stencil& s, const fluid::Field& layout) {
+  Weights f;
+  int n = 0;
   for (int c = 0; c < 3; ++c)
     for (int b = 0; b < 3; ++b)
-      for (int a = 0; a < 3; ++a) {
-        const int i = s.idx[0][a], j = s.idx[1][b], k = s.idx[2][c];
-        const double w = s.w[0][a] * s.w[1][b] * s.w[2][c];
-        sum += 0.5 * w * (f(i, j, k) + f(i + u[0], j + u[1], k + u[2]));
+      for (int a = 0; a < 3; ++a, ++n) {
+        f.idx[n] = layout.index(s.idx[0][a], s.idx[1][b], s.idx[2][c]);
+        f.w[n] = s.w[0][a] * s.w[1][b] * s.w[2][c];
       }
+  return f;
+}
+
+Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& layout) {
+  Weights f = flatten(s, layout);
+  if (alpha.empty()) return f;
+  const double* al = alpha.data();
+  double sum = 0;
+  std::array<double, 27> w;
+  for (int n = 0; n < 27; ++n) sum += (w[n] = f.w[n] * (1 - al[f.idx[n]]));
+  if (sum > 1e-12) {
+    const double inv = 1 / sum;
+    for (int n = 0; n < 27; ++n) f.w[n] = w[n] * inv;
+  }
+  return f;
+}
+
+void deposit(const Weights& s, double value, fluid::Field& f) {
+  double* d = f.data();
+  for (int n = 0; n < 27; ++n) d[s.idx[n]] += value * s.w[n];
+}
+
+double interpolate(const Weights& s, const fluid::Field& f) {
+  const double* d = f.data();
+  double sum = 0;
+  for (int n = 0; n < 27; ++n) sum += s.w[n] * d[s.idx[n]];
+  return sum;
+}
+
+double interpolate_cell_faces(const Weights& s, const fluid::Field& cell_layout, int d, const fluid::Field& f) {
+  // Face i of cell i (its low face) and face i + 1 (its high face): the same (i, j, k) in
+  // the face layout, and one step along d.
+  const double* v = f.data();
+  const long step = f.stride(d);
+  double sum = 0;
+  for (int n = 0; n < 27; ++n) {
+    const long q = s.idx[n];
+    // Convert the cell-layout flat index to (i, j, k), then to the face layout.
+    const long sy = cell_layout.stride(1), sz = cell_layout.stride(2);
+    const long k = q / sz, j = (q - k * sz) / sy, i = q - k * sz - j * sy;
+    const long fq = f.index(static_cast<int>(i) - fluid::kGhost, static_cast<int>(j) - fluid::kGhost,
+                            static_cast<int>(k) - fluid::kGhost);
+    sum += 0.5 * s.w[n] * (v[fq] + v[fq + step]);
+  }
   return sum;
 }
 

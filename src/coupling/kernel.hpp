@@ -40,6 +40,22 @@ struct Stencil {
 
 Stencil tsc_stencil(const Lattice& L, const Vec3& x);
 
+// The same 27 nodes as flat indices into fields of the lattice's layout, with weights that
+// may be reshaped node by node. Walls: masked(s, alpha) multiplies each node's weight by
+// (1 - alpha(node)) and rescales the sum back to 1, so that a parcel next to a wall puts
+// nothing into (and reads nothing from) nodes inside the wall, and deposits still conserve
+// exactly. A parcel whose 27 nodes are all inside walls keeps the plain weights.
+struct Weights {
+  std::array<long, 27> idx;
+  std::array<double, 27> w;
+};
+Weights flatten(const Stencil& s, const fluid::Field& layout);
+// `layout` gives the index layout (any field of the lattice); alpha may be empty (no walls).
+Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& layout);
+
+void deposit(const Weights& s, double value, fluid::Field& f);
+double interpolate(const Weights& s, const fluid::Field& f);
+
 // f(node) += value * weight(node) for the 27 nodes.
 void deposit(const Stencil& s, double value, fluid::Field& f);
 // sum over the 27 nodes of weight(node) f(node).
@@ -49,7 +65,8 @@ double interpolate(const Stencil& s, const fluid::Field& f);
 //   sum_cells w_c (f(face c) + f(face c+1)) / 2.
 // Used for the pressure-gradient force so that the parcels feel exactly the (1 - E) grad p
 // that the air's eps-weighted pressure term leaves out (E = face mean of eps).
-double interpolate_cell_faces(const Stencil& cell_stencil, int d, const fluid::Field& f);
+double interpolate_cell_faces(const Weights& cell_weights, const fluid::Field& cell_layout, int d,
+                              const fluid::Field& f);
 // Face field of component d on a periodic axis d: face n := face 0.
 void sync_periodic_face(int d, std::array<bool, 3> periodic, fluid::Field& f);
 

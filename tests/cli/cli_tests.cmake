@@ -19,3 +19,9 @@ add_test(NAME cli.tiny_case_runs
 set_tests_properties(cli.tiny_case_runs PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
 set_tests_properties(cli.bad_set_syntax PROPERTIES LABELS cli)
+# The same tiny case with air (a coupled run on a 6 x 6 x 11 grid of 1 mm).
+add_test(NAME cli.tiny_air_case_runs
+         COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/base.toml --set air.dx=1e-3
+                 --output ${PROJECT_BINARY_DIR}/cli_out/tiny_air)
+set_tests_properties(cli.tiny_air_case_runs PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "air: 6 x 6 x 11 cells.*particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
