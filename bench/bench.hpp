@@ -22,4 +22,16 @@ struct PressureBenchArgs {
 };
 int run_pressure_bench(const PressureBenchArgs& args);
 
+// One full air step (bench/fluid) on the die-filling grid: packed bed, Ergun K, moving shoe.
+struct FluidBenchArgs {
+  int nx = 140, ny = 70, nz = 50;
+  int threads = 2;
+  int steps = 10;                  // timed steps
+  int warmup = 3;                  // untimed steps before (projection of the initial field)
+  int time_order = 2;              // 1: Euler, 2: Heun (two projected stages)
+  std::string method = "pcg-mg2";  // pressure solver
+  double tolerance = 1e-8;         // relative residual of the pressure solves
+};
+int run_fluid_bench(const FluidBenchArgs& args);
+
 }  // namespace cgdem::bench

@@ -1,7 +1,8 @@
 // The cgdem command line.
-//   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N]
+//   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N] [--restart CHECKPOINT]
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
+//   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -19,7 +20,8 @@
 
 namespace {
 
-int run_command(const std::string& file, const std::vector<std::string>& sets, const std::string& output) {
+int run_command(const std::string& file, const std::vector<std::string>& sets, const std::string& output,
+                const std::string& restart) {
   using namespace cgdem;
   Config cfg = Config::from_file(file);
   for (const auto& s : sets) cfg.apply_override(s);
@@ -28,10 +30,11 @@ int run_command(const std::string& file, const std::vector<std::string>& sets, c
   app::AirCase air = app::read_air_case(cfg, c.dem);
   app::DiagnosticsSpec diag = app::read_diagnostics(cfg);
   cfg.check_unused();
-  return app::run_case(c, air, diag, {file, cfg.resolved_toml()});
+  return app::run_case(c, air, diag, {file, cfg.resolved_toml(), restart});
 }
 
-int parse_grid(const std::string& g, cgdem::bench::PressureBenchArgs& a) {
+template <class Args>
+int parse_grid(const std::string& g, Args& a) {
   if (std::sscanf(g.c_str(), "%dx%dx%d", &a.nx, &a.ny, &a.nz) != 3 || a.nx < 2 || a.ny < 2 || a.nz < 2)
     throw cgdem::Error("--grid: expected NXxNYxNZ with every size >= 2, got '" + g + "'");
   return 0;
@@ -46,13 +49,15 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
 
-  std::string case_file, output;
+  std::string case_file, output, restart;
   std::vector<std::string> sets;
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required()->check(CLI::ExistingFile);
   run->add_option("--set", sets, "override a key: key.path=value (repeatable)");
   run->add_option("--output", output, "output folder (overrides output.dir)");
   run->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  run->add_option("--restart", restart, "continue from a checkpoint (OUTPUT/checkpoint.bin of the same case)")
+      ->check(CLI::ExistingFile);
 
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
@@ -69,18 +74,33 @@ int main(int argc, char** argv) {
   bpress->add_option("--threads", p_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
   bpress->add_option("--repeats", p_args.repeats, "solves to average")->check(CLI::PositiveNumber);
   bpress->add_flag("--no-cholmod", no_cholmod, "skip the (slow) direct CHOLMOD reference");
+  cgdem::bench::FluidBenchArgs f_args;
+  std::string f_grid = "140x70x50";
+  auto* bfluid = bench->add_subcommand("fluid", "one full air step on the die-filling grid (per-phase table)");
+  bfluid->add_option("--grid", f_grid, "NXxNYxNZ (cubic cells on the 84 x 42 x 30 mm domain)");
+  bfluid->add_option("--threads", f_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bfluid->add_option("--steps", f_args.steps, "timed steps")->check(CLI::PositiveNumber);
+  bfluid->add_option("--warmup", f_args.warmup, "untimed steps first")->check(CLI::NonNegativeNumber);
+  bfluid->add_option("--time-order", f_args.time_order, "1: Euler, 2: Heun")->check(CLI::Range(1, 2));
+  bfluid->add_option("--method", f_args.method, "pressure solver (pcg-mg2, pcg-mg, pcg-fft, cg, cholmod)");
+  bfluid->add_option("--tolerance", f_args.tolerance, "relative residual of the pressure solves")
+      ->check(CLI::PositiveNumber);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) {
       if (threads > 0) omp_set_num_threads(threads);
-      return run_command(case_file, sets, output);
+      return run_command(case_file, sets, output, restart);
     }
     if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
     if (*bpress) {
       parse_grid(grid, p_args);
       p_args.with_cholmod = !no_cholmod;
       return cgdem::bench::run_pressure_bench(p_args);
+    }
+    if (*bfluid) {
+      parse_grid(f_grid, f_args);
+      return cgdem::bench::run_fluid_bench(f_args);
     }
   } catch (const cgdem::Error& e) {
     std::fprintf(stderr, "cgdem: error: %s\n", e.what());
