@@ -65,7 +65,8 @@ class CoupledSolver {
   CoupledParams params_;
   fluid::Sources src_;
   coupling::VoidStats void_stats_;
-  fluid::IbmFractions walls_t0_;  // wall fractions for the first mapping (the air's own after)
+  void use_walls_now();
+  fluid::IbmFractions walls_start_;  // wall fractions before the air's first step
   PhaseTimers timers_;
   int t_gather_, t_map_, t_deposit_;
 };

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "contact/contact_table.hpp"
+#include "io/archive.hpp"
 #include "core/timers.hpp"
 #include "geometry/scene.hpp"
 #include "particles/neighbor_list.hpp"
@@ -84,6 +85,12 @@ class DemSolver {
   // Number of particle-particle contacts (pairs with overlap) and wall contacts.
   long contact_count() const;
   PhaseTimers& timers() { return timers_; }
+  // Checkpoint: the complete state (particles in their current order, neighbour lists with
+  // contact history, time, counters, energy accounts), so that a run continued from it is
+  // bit-identical to one that never stopped (dem_checkpoint.cpp). load() expects a solver
+  // built from the same case (species, material, walls).
+  void save(io::ArchiveWriter& w) const;
+  void load(io::ArchiveReader& r);
   // Smallest collision time over all species pairs and walls.
   double min_collision_time() const { return table_.min_collision_time(); }
 

@@ -128,6 +128,7 @@ DemCase read_dem_case(Config& cfg) {
   c.output.snapshot_interval = os.number_or("snapshot_interval", 1e-2, Range::positive());
   c.output.progress_interval = os.number_or("progress_interval", 10.0, Range::positive());
   c.output.max_speed = os.number_or("max_speed", 50.0, Range::positive());
+  c.output.checkpoint_interval = os.number_or("checkpoint_interval", 1e-2, Range::positive());
   return c;
 }
 

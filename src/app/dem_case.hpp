@@ -21,6 +21,7 @@ struct OutputSpec {
   double snapshot_interval = 1e-2;  // [s] simulated
   double progress_interval = 10;    // [s] wall clock, when not on a terminal
   double max_speed = 50;            // [m/s] a faster particle stops the run (blow-up)
+  double checkpoint_interval = 1e-2;  // [s] simulated, between checkpoints (checkpoint.bin)
 };
 
 struct DemCase {

@@ -31,8 +31,8 @@ DiagnosticsSpec read_diagnostics(Config& cfg) {
     d.cells.push_back(pc);
   }
   if (cells.empty()) {
-    // Defaults (the paper does not give the positions): 1.2 mm cubes (2 x 2 x 2 cells of the
-    // 0.6 mm grid) on the die's mid-plane in y. A: shallow section, just above its floor;
+    // Defaults (the paper does not give the positions): boxes of 2.4 x 2.4 x 1.2 mm
+    // (4 x 4 x 2 cells of the 0.6 mm grid) on the die's mid-plane in y. A: shallow section, just above its floor;
     // B: deep section, just above its floor; C: deep section, just below the table top
     // (where the shoe's powder enters).
     const auto& p = d.die;
@@ -81,14 +81,14 @@ void DieDiagnostics::observe(double t, const Particles& p) {
   if (!spec_.enabled) return;
   for (size_t i = 0; i < p.size(); ++i) {
     const auto id = static_cast<size_t>(p.id[i]);
-    if (id >= hit_.size()) hit_.resize(id + 1, false);
+    if (id >= hit_.size()) hit_.resize(id + 1, 0);
     if (hit_[id] || !in_mouth(p.x[i])) continue;
     if (p.x[i].z - p.radius[i] < floor_z(p.x[i].x) + band_) {
-      hit_[id] = true;
+      hit_[id] = 1;
       impacts_.push_back({p.id[i], t, -p.v[i].z, mass_[p.species[i]]});
     }
   }
-  history_.emplace_back(t, mass_in_die(p));
+  history_.push_back({t, mass_in_die(p)});
 }
 
 std::optional<std::pair<double, double>> DieDiagnostics::front_impact() const {
@@ -110,9 +110,9 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
   r.transfer_rate = 0;
   if (!history_.empty()) {
     auto it = std::lower_bound(history_.begin(), history_.end(), t - spec_.rate_window,
-                               [](const auto& h, double v) { return h.first < v - 1e-12; });
-    if (it != history_.end() && t - it->first > 0.5 * spec_.rate_window)
-      r.transfer_rate = (r.mass_in_die - it->second) / (t - it->first);
+                               [](const MassSample& h, double v) { return h.t < v - 1e-12; });
+    if (it != history_.end() && t - it->t > 0.5 * spec_.rate_window)
+      r.transfer_rate = (r.mass_in_die - it->mass) / (t - it->t);
   }
   for (const auto& c : spec_.cells) {
     if (!air) {
@@ -135,6 +135,16 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
     r.pressure.push_back(n ? sum / n : std::numeric_limits<double>::quiet_NaN());
   }
   return r;
+}
+
+void DieDiagnostics::save(io::ArchiveWriter& w) const {
+  w.tag("diagnostics");
+  w.put_vector(hit_), w.put_vector(impacts_), w.put_vector(history_);
+}
+
+void DieDiagnostics::load(io::ArchiveReader& r) {
+  r.tag("diagnostics");
+  r.get_vector(hit_), r.get_vector(impacts_), r.get_vector(history_);
 }
 
 std::string DieDiagnostics::csv_header() const {

@@ -23,6 +23,7 @@
 #include "core/config.hpp"
 #include "fluid/fluid_state.hpp"
 #include "geometry/die_filling.hpp"
+#include "io/archive.hpp"
 #include "particles/particles.hpp"
 
 namespace cgdem::app {
@@ -71,6 +72,10 @@ class DieDiagnostics {
   // Time of the first impact and the mass-weighted mean downward speed within the window.
   std::optional<std::pair<double, double>> front_impact() const;
 
+  // Checkpoint of the running state (impacts so far, mass history).
+  void save(io::ArchiveWriter& w) const;
+  void load(io::ArchiveReader& r);
+
  private:
   double mass_in_die(const Particles& p) const;
   double floor_z(double x) const;
@@ -79,9 +84,12 @@ class DieDiagnostics {
   DiagnosticsSpec spec_;
   std::vector<double> mass_, diameter_;
   double band_ = 0;
-  std::vector<bool> hit_;                     // by parcel id
+  std::vector<uint8_t> hit_;                  // by parcel id
   std::vector<Impact> impacts_;
-  std::vector<std::pair<double, double>> history_;  // (t, M) for the rate
+  struct MassSample {
+    double t, mass;
+  };
+  std::vector<MassSample> history_;  // M(t) for the rate
 };
 
 }  // namespace cgdem::app

@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
+#include <sstream>
 
+#include "app/checkpoint.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -31,7 +34,8 @@ void check_particles(const DemSolver& dem, double max_speed) {
     if (!finite || norm(v) > max_speed)
       throw RunError(fmt::format(
           "step {}, t = {:.6g} s: particle id {} has {} (x = [{:.4g}, {:.4g}, {:.4g}] m, |v| = {:.4g} m/s; "
-          "output.max_speed = {:g}). The run stopped; the last good state is last_good.h5 in the output folder.",
+          "output.max_speed = {:g}). The run stopped; the last good state is last_good.h5 in the output folder "
+          "(checkpoint.bin continues from there with --restart).",
           dem.steps(), dem.time(), p.id[i], finite ? "a runaway velocity" : "a non-finite position or velocity",
           x.x, x.y, x.z, norm(v), max_speed));
   }
@@ -53,7 +57,7 @@ void check_air(const fluid::FluidState& air, double max_speed, long step) {
         throw RunError(fmt::format(
             "fluid step {}, t = {:.6g} s: cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m has {} (u = [{:.4g}, {:.4g}, "
             "{:.4g}] m/s, p = {:.4g} Pa; output.max_speed = {:g}). The run stopped; the last good state is "
-            "last_good.h5 in the output folder.",
+            "last_good.h5 in the output folder (checkpoint.bin continues from there with --restart).",
             step, air.t, i, j, k, x.x, x.y, x.z, what, u, v, w, p, max_speed));
       }
 }
@@ -123,6 +127,27 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   std::vector<double> sp_mass, sp_d;
   for (const auto& s : c.species) sp_mass.push_back(s.mass()), sp_d.push_back(s.diameter());
   DieDiagnostics diag(diag_spec, sp_mass, sp_d);
+  RunCounters counters;
+  const bool restart = !info.restart.empty();
+  if (restart) {
+    const std::string stored = read_checkpoint(info.restart, *dem, with_air ? &air : nullptr, diag, counters);
+    if (stored != info.resolved_config) {
+      // Name the differing lines (time.end and output keys usually; anything else changes the physics).
+      auto lines = [](const std::string& s) {
+        std::set<std::string> out;
+        std::istringstream in(s);
+        for (std::string l; std::getline(in, l);) out.insert(l);
+        return out;
+      };
+      const auto a = lines(stored), b = lines(info.resolved_config);
+      std::vector<std::string> diff;
+      for (const auto& l : b)
+        if (!a.count(l)) diff.push_back(l);
+      fmt::print(stderr, "cgdem: warning: the case differs from the one that wrote {} in: {} (continuing)\n",
+                 info.restart, fmt::join(diff, " | "));
+    }
+    fmt::print("restarting from {} at t = {:.6g} s (DEM step {})\n", info.restart, dem->time(), dem->steps());
+  }
 
   fmt::print("cgdem {}: {} particles, {} species, {} wall parts, dt = {:g} s, t = {:g} .. {:g} s\n", kGitRevision,
              dem->particles().size(), c.species.size(), dem->scene().parts().size(), c.dem.dt, c.t_start, c.t_end);
@@ -135,11 +160,19 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   fmt::print("shortest collision time {:.4g} s ({:.1f} steps); set-up {:.2f} s\n", dem->min_collision_time(),
              dem->min_collision_time() / c.dem.dt, setup_clock.seconds());
 
-  io::SnapshotSeries snapshots(c.output.dir, "particles", attrs);
+  io::SnapshotSeries snapshots(c.output.dir, "particles", attrs, restart);
   std::unique_ptr<io::GridSnapshotSeries> air_snapshots;
-  if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs);
+  if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
+  // Time series: on a restart the rows after the checkpoint's time are dropped and the
+  // file continues; otherwise it starts afresh.
   auto open_csv = [&](const std::string& name, const std::string& header) {
     const std::string path = (out / name).string();
+    if (restart && std::filesystem::exists(path)) {
+      truncate_csv_after(path, dem->time());
+      std::FILE* f = std::fopen(path.c_str(), "a");
+      if (!f) throw Error("cannot append to " + path);
+      return f;
+    }
     std::FILE* f = std::fopen(path.c_str(), "w");
     if (!f) throw Error("cannot write " + path);
     std::fprintf(f, "# cgdem %s, case %s\n%s\n", kGitRevision, info.case_file.c_str(), header.c_str());
@@ -148,9 +181,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   std::FILE* energy = open_csv("energy.csv", energy_header());
   std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
   const std::string last_good = (out / "last_good.h5").string();
-
-  long fluid_steps = 0, pressure_iterations = 0, unconverged = 0;
-  double max_div = 0;
+  const std::string checkpoint = (out / "checkpoint.bin").string();
   auto write_energy = [&]() {
     EnergyBudget e = dem->energy();
     e.work_fluid = dem->fluid_work();
@@ -168,7 +199,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   };
   auto check_health = [&]() {
     check_particles(*dem, c.output.max_speed);
-    if (with_air) check_air(air, c.output.max_speed, fluid_steps);
+    if (with_air) check_air(air, c.output.max_speed, counters.fluid_steps);
   };
   auto write_snapshot = [&]() {
     io::ParticleTable t = to_table(dem->particles());
@@ -177,13 +208,25 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     io::write_particles_h5(last_good, t, attrs);  // atomic: always a consistent state
   };
 
+  auto write_checkpoint_now = [&]() {
+    write_checkpoint(checkpoint, info.resolved_config, *dem, with_air ? &air : nullptr, diag, counters);
+  };
+
   check_health();
-  diag.observe(dem->time(), dem->particles());
-  write_energy();
-  write_snapshot();
+  if (!restart) {
+    diag.observe(dem->time(), dem->particles());
+    write_energy();
+    write_snapshot();
+    write_checkpoint_now();
+  }
   const bool tty = isatty(STDOUT_FILENO);
   const double span = c.t_end - c.t_start, tiny = 1e-9 * c.dem.dt;
-  double next_energy = c.t_start + c.output.energy_interval, next_snap = c.t_start + c.output.snapshot_interval;
+  // Output times are multiples of the intervals counted from t_start (also after a restart).
+  auto next_after = [&](double interval) {
+    return c.t_start + interval * (std::floor((dem->time() - c.t_start) / interval + 1e-9) + 1);
+  };
+  double next_energy = next_after(c.output.energy_interval), next_snap = next_after(c.output.snapshot_interval);
+  double next_checkpoint = next_after(c.output.checkpoint_interval);
   const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));  // vacuum: diagnostics every 0.1 ms
   Stopwatch clock;
   double last_progress = 0;
@@ -193,10 +236,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       const long before = dem->steps();
       CoupledStepStats st = coupled->step();
       particle_steps += (dem->steps() - before) * static_cast<long>(dem->particles().size());
-      ++fluid_steps;
-      pressure_iterations += st.fluid.pressure_iterations;
-      max_div = std::max(max_div, st.fluid.max_divergence);
-      if (!st.fluid.pressure_converged && unconverged++ == 0)
+      ++counters.fluid_steps;
+      counters.pressure_iterations += st.fluid.pressure_iterations;
+      counters.max_divergence = std::max(counters.max_divergence, st.fluid.max_divergence);
+      if (!st.fluid.pressure_converged && counters.unconverged++ == 0)
         fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
                    "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
       diag.observe(dem->time(), dem->particles());
@@ -216,6 +259,11 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     if (snap) {
       write_snapshot();
       while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
+    }
+    if (t >= next_checkpoint - tiny || last) {
+      check_health();
+      write_checkpoint_now();
+      while (next_checkpoint <= t + tiny) next_checkpoint += c.output.checkpoint_interval;
     }
     const double wall = clock.seconds();
     if ((tty && wall - last_progress > 0.5) || (!tty && wall - last_progress > c.output.progress_interval) || last) {
@@ -245,7 +293,9 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     fmt::print("{}", fluid->timers().table("per-phase time (air)"));
     fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
                "{:.2e} 1/s\n",
-               fluid_steps, fluid_steps ? double(pressure_iterations) / fluid_steps : 0.0, unconverged, max_div);
+               counters.fluid_steps,
+               counters.fluid_steps ? double(counters.pressure_iterations) / counters.fluid_steps : 0.0,
+               counters.unconverged, counters.max_divergence);
   }
   fmt::print("DEM steps {}, wall {:.1f} s, {:.3g} particle-steps/s, neighbour-list builds {}\n", dem->steps(), wall,
              particle_steps / std::max(wall, 1e-9), dem->neighbor_builds());
@@ -259,7 +309,9 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     else
       fmt::print("the powder has not reached the die floor yet\n");
   }
-  fmt::print("outputs in {}: energy.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, config.resolved.toml\n",
+  fmt::print("state digest {:016x} at t = {:.9g} s\n", state_digest(*dem, with_air ? &air : nullptr), dem->time());
+  fmt::print("outputs in {}: energy.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, checkpoint.bin, "
+             "config.resolved.toml\n",
              c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "",
              with_air ? ", air.xdmf (+ air_*.h5)" : "");
   return 0;

@@ -13,6 +13,7 @@ namespace cgdem::app {
 struct RunInfo {
   std::string case_file;
   std::string resolved_config;  // TOML text with defaults filled in
+  std::string restart;          // checkpoint to continue from ("" : start afresh)
 };
 
 // Returns the process exit code. Throws cgdem::Error on failures the user must see.

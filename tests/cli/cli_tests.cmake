@@ -25,3 +25,19 @@ add_test(NAME cli.tiny_air_case_runs
                  --output ${PROJECT_BINARY_DIR}/cli_out/tiny_air)
 set_tests_properties(cli.tiny_air_case_runs PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "air: 6 x 6 x 11 cells.*particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
+# Checkpoint and restart: bit-identical continuation, in vacuum, with air, and with air
+# and a moving wall (the restart lands while the paddle accelerates through the parcels).
+foreach(variant vacuum air moving_wall)
+  set(extra "")
+  set(case ${PROJECT_SOURCE_DIR}/tests/cli/base.toml)
+  if(variant STREQUAL "air")
+    set(extra "--set;air.dx=1e-3")
+  elseif(variant STREQUAL "moving_wall")
+    set(case ${PROJECT_SOURCE_DIR}/tests/cli/moving_wall.toml)
+  endif()
+  add_test(NAME cli.restart_is_bit_identical_${variant}
+           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${case}
+                   "-DEXTRA=${extra}" -DWORK=${PROJECT_BINARY_DIR}/cli_out/restart_${variant}
+                   -P ${PROJECT_SOURCE_DIR}/tests/cli/restart.cmake)
+  set_tests_properties(cli.restart_is_bit_identical_${variant} PROPERTIES LABELS cli)
+endforeach()

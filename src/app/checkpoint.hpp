@@ -1,0 +1,37 @@
+// Checkpoints of a run: `<output>/checkpoint.bin`, written atomically at every
+// output.checkpoint_interval of simulated time (after the health checks passed) and at the
+// end. It holds the complete state — DEM (particles, neighbour lists with contact history,
+// counters), air (velocities, pressure, eps at both ends of the step, time), diagnostics
+// (impacts, mass history) and the run's counters — so that `cgdem run CASE --restart
+// <output>/checkpoint.bin` continues bit-identically to a run that never stopped. The
+// moving walls need no state of their own: their position is a function of time.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "app/die_diagnostics.hpp"
+#include "fluid/fluid_state.hpp"
+#include "solvers/dem/dem_solver.hpp"
+
+namespace cgdem::app {
+
+struct RunCounters {
+  long fluid_steps = 0, pressure_iterations = 0, unconverged = 0;
+  double max_divergence = 0;
+};
+
+void write_checkpoint(const std::string& path, const std::string& config, const DemSolver& dem,
+                      const fluid::FluidState* air, const DieDiagnostics& diag, const RunCounters& counters);
+// Returns the configuration stored with the checkpoint. Throws cgdem::Error when the file
+// is not a checkpoint of a matching case (particle count, air grid, with/without air).
+std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::FluidState* air, DieDiagnostics& diag,
+                            RunCounters& counters);
+
+// 64-bit FNV-1a digest of the physical state (DEM archive and air fields), printed at the
+// end of a run so that two runs can be compared bit for bit.
+uint64_t state_digest(const DemSolver& dem, const fluid::FluidState* air);
+
+// Keeps the comment lines, the header and the rows whose first column (time) is <= t.
+void truncate_csv_after(const std::string& path, double t);
+
+}  // namespace cgdem::app

@@ -1,0 +1,23 @@
+# A run stopped at a checkpoint and continued with --restart must end in exactly the state
+# of the uninterrupted run (same state digest: DEM particles, contact history, air fields).
+#   -DCGDEM=... -DCASE=... -DWORK=... -DEXTRA="--set;air.dx=1e-3" (optional)
+file(REMOVE_RECURSE ${WORK})
+set(common run ${CASE} --set output.checkpoint_interval=1e-3 ${EXTRA})
+execute_process(COMMAND ${CGDEM} ${common} --output ${WORK}/full OUTPUT_VARIABLE full RESULT_VARIABLE r1)
+execute_process(COMMAND ${CGDEM} ${common} --set time.end=1e-3 --output ${WORK}/split OUTPUT_VARIABLE first RESULT_VARIABLE r2)
+execute_process(COMMAND ${CGDEM} ${common} --output ${WORK}/split --restart ${WORK}/split/checkpoint.bin
+                OUTPUT_VARIABLE second RESULT_VARIABLE r3)
+if(NOT r1 EQUAL 0 OR NOT r2 EQUAL 0 OR NOT r3 EQUAL 0)
+  message(FATAL_ERROR "a run failed: ${r1} ${r2} ${r3}\n${full}\n${first}\n${second}")
+endif()
+string(REGEX MATCH "state digest [0-9a-f]+ at t = [0-9.e-]+" d_full "${full}")
+string(REGEX MATCH "state digest [0-9a-f]+ at t = [0-9.e-]+" d_split "${second}")
+message(STATUS "uninterrupted: ${d_full}; restarted at 1e-3 s: ${d_split}")
+if(NOT d_full OR NOT d_full STREQUAL d_split)
+  message(FATAL_ERROR "restart is not bit-identical: '${d_full}' vs '${d_split}'")
+endif()
+file(READ ${WORK}/full/energy.csv e_full)
+file(READ ${WORK}/split/energy.csv e_split)
+if(NOT e_full STREQUAL e_split)
+  message(FATAL_ERROR "energy.csv of the restarted run differs from the uninterrupted one")
+endif()
