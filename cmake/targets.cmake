@@ -34,9 +34,15 @@ cgdem_module(cgdem_pressure DIRS solvers/pressure
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
 cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
 
+# The command line: its case readers, run loop and diagnostics are a library (tested in
+# tests/app); the executable is main.cpp.
 file(GLOB CGDEM_APP_SRCS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/app/*.cpp)
-add_executable(cgdem ${CGDEM_APP_SRCS})
-target_link_libraries(cgdem PRIVATE cgdem_dem cgdem_fluid cgdem_coupling)
+list(REMOVE_ITEM CGDEM_APP_SRCS ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
+add_library(cgdem_app STATIC ${CGDEM_APP_SRCS})
+target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling)
+target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
+add_executable(cgdem ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
+target_link_libraries(cgdem PRIVATE cgdem_app)
 target_compile_options(cgdem PRIVATE -Wall -Wextra)
 
 if(CGDEM_BUILD_TESTS AND GTest_FOUND)
@@ -60,6 +66,7 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(pressure cgdem_pressure)
   cgdem_tests(fluid cgdem_fluid)
   cgdem_tests(coupling cgdem_coupling)
+  cgdem_tests(app cgdem_app)
   # End-to-end checks of the command line (config errors, demo smoke run).
   if(EXISTS ${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
     include(${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)

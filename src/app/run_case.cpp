@@ -272,7 +272,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t, 100 * frac,
                                      rate, wall * (1 - frac) / std::max(frac, 1e-9));
       if (tty) fmt::print("\r{}   ", line), std::fflush(stdout);
-      else fmt::print("{}\n", line);
+      else fmt::print("{}\n", line), std::fflush(stdout);  // batch logs see progress as it happens
     }
   }
   if (tty) fmt::print("\n");
