@@ -83,8 +83,7 @@ void FluidSolver::explicit_rhs(const FluidState& s, const Field& eps_cell, const
         for (int i = r[0][0]; i < r[0][1]; ++i)
           R[d](i, j, k) = E[d](i, j, k) * params_.rho * params_.gravity[d] +  // eq. (13) eps rho g
                           value_or_zero(src.f_explicit[d], i, j, k);
-    add_advection(g_, d, params_.advection, params_.rho, vel, ef, r, R[d]);
-    if (params_.mu > 0) add_viscous(g_, d, params_.mu, vel, eps_cell, r, R[d]);
+    add_momentum_terms(g_, d, true, params_.advection, params_.rho, params_.mu, vel, ef, eps_cell, r, R[d]);
   }
 }
 

@@ -1,45 +1,131 @@
 #include "fluid/momentum_terms.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace cgdem::fluid {
 
 namespace {
 
-using Idx = std::array<int, 3>;
+// Read-only view of a Field: element (i, j, k) at o[i + sy j + sz k].
+struct View {
+  const double* o;
+  long sy, sz;
+  explicit View(const Field& f) : o(f.data() + f.index(0, 0, 0)), sy(f.stride(1)), sz(f.stride(2)) {}
+  double operator()(long i, long j, long k) const { return o[i + sy * j + sz * k]; }
+  long step(int e) const { return e == 0 ? 1 : (e == 1 ? sy : sz); }
+  long at(long i, long j, long k) const { return i + sy * j + sz * k; }
+};
 
-inline Idx add(Idx a, const Idx& b, int s = 1) {
-  for (int q = 0; q < 3; ++q) a[q] += s * b[q];
-  return a;
-}
-inline double at(const Field& f, const Idx& i) { return f(i[0], i[1], i[2]); }
-
-inline double limited_slope(Advection s, double a, double b) {
-  switch (s) {
-    case Advection::Upwind: return 0.0;
-    case Advection::Central: return b;
-    case Advection::VanLeer: return a * b > 0 ? 2 * a * b / (a + b) : 0.0;
-    case Advection::MC:
-      if (a * b <= 0) return 0.0;
-      return std::copysign(std::fmin(std::fmin(2 * std::fabs(a), 0.5 * std::fabs(a + b)), 2 * std::fabs(b)), b);
+template <Advection S>
+inline double limited_slope(double a, double b) {
+  if constexpr (S == Advection::Upwind) return 0.0;
+  if constexpr (S == Advection::Central) return b;
+  if constexpr (S == Advection::VanLeer) return a * b > 0 ? 2 * a * b / (a + b) : 0.0;
+  if constexpr (S == Advection::MC) {
+    if (a * b <= 0) return 0.0;
+    return std::copysign(std::fmin(std::fmin(2 * std::fabs(a), 0.5 * std::fabs(a + b)), 2 * std::fabs(b)), b);
   }
   return 0.0;
 }
 
-// Advected value at the upper e-side of idx: upwind-biased TVD reconstruction.
-inline double advected(Advection s, const Field& ud, const Idx& idx, const Idx& e, double mass) {
-  double um = at(ud, add(idx, e, -1)), u0 = at(ud, idx), u1 = at(ud, add(idx, e)), u2 = at(ud, add(idx, e, 2));
-  if (mass >= 0) return u0 + 0.5 * limited_slope(s, u0 - um, u1 - u0);
-  return u1 + 0.5 * limited_slope(s, u1 - u2, u0 - u1);
-}
+// The two momentum fluxes through the upper e-side of the control volume of a d-face.
+struct Kernel {
+  int d;
+  double rho, mu, inv_dx;
+  View ud, ec;
+  std::array<View, 3> v, E;
+  bool advect, visc;
 
-template <class Fn>
-void for_faces(const FaceRange& r, Fn fn) {
-#pragma omp parallel for schedule(static) if (long(r[0][1] - r[0][0]) * (r[1][1] - r[1][0]) * (r[2][1] - r[2][0]) > kOmpMinWork)
-  for (int k = r[2][0]; k < r[2][1]; ++k)
-    for (int j = r[1][0]; j < r[1][1]; ++j)
-      for (int i = r[0][0]; i < r[0][1]; ++i) fn(Idx{i, j, k});
+  // Advective flux  M_e q_e  at the upper e-side of face (i, j, k).
+  template <Advection S>
+  double adv(int e, long i, long j, long k) const {
+    const View &ve = v[e], &epe = E[e];
+    const long a = ve.at(i, j, k) + ve.step(e), b = a - ve.step(d);
+    const double mass = 0.5 * rho * (epe.o[a] * ve.o[a] + epe.o[b] * ve.o[b]);
+    const long c = ud.at(i, j, k), s = ud.step(e);
+    const double um = ud.o[c - s], u0 = ud.o[c], u1 = ud.o[c + s], u2 = ud.o[c + 2 * s];
+    const double q = mass >= 0 ? u0 + 0.5 * limited_slope<S>(u0 - um, u1 - u0) : u1 + 0.5 * limited_slope<S>(u1 - u2, u0 - u1);
+    return mass * q;
+  }
+  // Viscous stress at the upper e-side of face (i, j, k).
+  double stress(int e, long i, long j, long k) const {
+    const long c = ud.at(i, j, k), se = ud.step(e);
+    const long ce = ec.at(i, j, k);
+    if (e == d) {
+      double s = 0;
+      for (int f = 0; f < 3; ++f) {
+        const long q = v[f].at(i, j, k);
+        s += v[f].o[q + v[f].step(f)] - v[f].o[q];
+      }
+      const double div_u = s * inv_dx;
+      return ec.o[ce] * mu * (2 * (ud.o[c + ud.step(d)] - ud.o[c]) * inv_dx - (2.0 / 3.0) * div_u);
+    }
+    const long lo = ce - ec.step(d), ee = ec.step(e);
+    const double eps_edge = 0.25 * (ec.o[ce] + ec.o[lo] + ec.o[ce + ee] + ec.o[lo + ee]);
+    const double dud = (ud.o[c + se] - ud.o[c]) * inv_dx;
+    const View& ve = v[e];
+    const long q = ve.at(i, j, k) + ve.step(e);
+    const double due = (ve.o[q] - ve.o[q - ve.step(d)]) * inv_dx;
+    return eps_edge * mu * (dud + due);
+  }
+};
+
+template <Advection S>
+void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
+  const int i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0], k1 = r[2][1];
+  if (i1 <= i0 || j1 <= j0 || k1 <= k0) return;
+  const long ni = i1 - i0, nj = j1 - j0, nk = k1 - k0;
+  const bool par = ni * nj * nk > kOmpMinWork;
+#pragma omp parallel if (par)
+  {
+    const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
+    const int ka = k0 + static_cast<int>(nk * tid / nth), kb = k0 + static_cast<int>(nk * (tid + 1) / nth);
+    // Buffers of upper-side fluxes: x along the row (index i - i0 + 1, slot 0 = face i0 - 1),
+    // y of the previous row, z of the previous plane.
+    std::vector<double> xa(ni + 1), xv(ni + 1), ya(ni), yv(ni), za(ni * nj), zv(ni * nj);
+    auto upper = [&](int e, long i, long j, long k, double& fa, double& fv) {
+      fa = K.advect ? K.adv<S>(e, i, j, k) : 0.0;
+      fv = K.visc ? K.stress(e, i, j, k) : 0.0;
+    };
+    for (int k = ka; k < kb; ++k) {
+      if (k == ka)
+        for (long j = j0; j < j1; ++j)
+          for (long i = i0; i < i1; ++i) upper(2, i, j, k - 1, za[(j - j0) * ni + i - i0], zv[(j - j0) * ni + i - i0]);
+      for (long i = i0; i < i1; ++i) upper(1, i, j0 - 1, k, ya[i - i0], yv[i - i0]);
+      double* out = rhs.data() + rhs.index(0, 0, k);
+      for (long j = j0; j < j1; ++j) {
+        for (long i = i0 - 1; i < i1; ++i) upper(0, i, j, k, xa[i - i0 + 1], xv[i - i0 + 1]);
+        double* ro = out + rhs.stride(1) * j;
+        double* zar = za.data() + (j - j0) * ni;
+        double* zvr = zv.data() + (j - j0) * ni;
+        for (long i = i0; i < i1; ++i) {
+          const long q = i - i0;
+          double fya, fyv, fza, fzv;
+          upper(1, i, j, k, fya, fyv);
+          upper(2, i, j, k, fza, fzv);
+          if (K.advect) {
+            double div = 0;
+            div += xa[q + 1] - xa[q];
+            div += fya - ya[q];
+            div += fza - zar[q];
+            ro[i] -= div * K.inv_dx;
+          }
+          if (K.visc) {
+            double div = 0;
+            div += xv[q + 1] - xv[q];
+            div += fyv - yv[q];
+            div += fzv - zvr[q];
+            ro[i] += div * K.inv_dx;
+          }
+          ya[q] = fya, yv[q] = fyv, zar[q] = fza, zvr[q] = fzv;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -52,54 +138,39 @@ Advection advection_from_string(const std::string& name) {
   throw Error("unknown advection scheme '" + name + "' (expected upwind, central, van-leer or mc)");
 }
 
+void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, double rho, double mu,
+                        const std::array<const Field*, 3>& vel, const std::array<const Field*, 3>& eps_face,
+                        const Field& eps_cell, const FaceRange& range, Field& rhs) {
+  const bool visc = mu > 0;
+  if (!advect && !visc) return;
+  const Field& dummy = *vel[d];
+  auto view_or = [&](const Field* f) { return View(f ? *f : dummy); };
+  Kernel K{d,
+           rho,
+           mu,
+           1.0 / g.dx,
+           View(*vel[d]),
+           View(visc ? eps_cell : dummy),
+           {View(*vel[0]), View(*vel[1]), View(*vel[2])},
+           {view_or(eps_face[0]), view_or(eps_face[1]), view_or(eps_face[2])},
+           advect,
+           visc};
+  switch (scheme) {
+    case Advection::Upwind: sweep<Advection::Upwind>(K, range, rhs); break;
+    case Advection::Central: sweep<Advection::Central>(K, range, rhs); break;
+    case Advection::VanLeer: sweep<Advection::VanLeer>(K, range, rhs); break;
+    case Advection::MC: sweep<Advection::MC>(K, range, rhs); break;
+  }
+}
+
 void add_advection(const MacGrid& g, int d, Advection scheme, double rho, const std::array<const Field*, 3>& vel,
                    const std::array<const Field*, 3>& eps_face, const FaceRange& range, Field& rhs) {
-  const Field& ud = *vel[d];
-  const Idx dd = unit(d);
-  const double inv_dx = 1.0 / g.dx;
-  // Flux through the upper e-side of the control volume of face idx.
-  auto flux = [&](const Idx& idx, int e) {
-    const Idx ee = unit(e);
-    const Field &ve = *vel[e], &epe = *eps_face[e];
-    Idx a = add(idx, ee), b = add(add(idx, dd, -1), ee);
-    double mass = 0.5 * rho * (at(epe, a) * at(ve, a) + at(epe, b) * at(ve, b));
-    return mass * advected(scheme, ud, idx, ee, mass);
-  };
-  for_faces(range, [&](const Idx& idx) {
-    double div = 0;
-    for (int e = 0; e < 3; ++e) div += flux(idx, e) - flux(add(idx, unit(e), -1), e);
-    rhs(idx[0], idx[1], idx[2]) -= div * inv_dx;
-  });
+  add_momentum_terms(g, d, true, scheme, rho, 0.0, vel, eps_face, *vel[d], range, rhs);
 }
 
 void add_viscous(const MacGrid& g, int d, double mu, const std::array<const Field*, 3>& vel, const Field& eps_cell,
                  const FaceRange& range, Field& rhs) {
-  const Field& ud = *vel[d];
-  const Idx dd = unit(d);
-  const double inv_dx = 1.0 / g.dx;
-  auto div_u = [&](const Idx& c) {
-    double s = 0;
-    for (int e = 0; e < 3; ++e) s += at(*vel[e], add(c, unit(e))) - at(*vel[e], c);
-    return s * inv_dx;
-  };
-  // Stress on the upper e-side of the control volume of face idx.
-  auto stress = [&](const Idx& idx, int e) {
-    const Idx ee = unit(e);
-    if (e == d)
-      return at(eps_cell, idx) * mu * (2 * (at(ud, add(idx, dd)) - at(ud, idx)) * inv_dx - (2.0 / 3.0) * div_u(idx));
-    const Field& ve = *vel[e];
-    Idx lo = add(idx, dd, -1);
-    double eps_edge =
-        0.25 * (at(eps_cell, idx) + at(eps_cell, lo) + at(eps_cell, add(idx, ee)) + at(eps_cell, add(lo, ee)));
-    double dud = (at(ud, add(idx, ee)) - at(ud, idx)) * inv_dx;
-    double due = (at(ve, add(idx, ee)) - at(ve, add(lo, ee))) * inv_dx;
-    return eps_edge * mu * (dud + due);
-  };
-  for_faces(range, [&](const Idx& idx) {
-    double div = 0;
-    for (int e = 0; e < 3; ++e) div += stress(idx, e) - stress(add(idx, unit(e), -1), e);
-    rhs(idx[0], idx[1], idx[2]) += div * inv_dx;
-  });
+  add_momentum_terms(g, d, false, Advection::Upwind, 0.0, mu, vel, {nullptr, nullptr, nullptr}, eps_cell, range, rhs);
 }
 
 }  // namespace cgdem::fluid

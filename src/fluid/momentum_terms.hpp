@@ -21,6 +21,13 @@
 //   rhs(idx) += sum_e [T_e(idx) - T_e(idx - e)] / dx
 //
 // Reads: velocities and eps with valid ghost layers (boundary.hpp). Writes: rhs only.
+//
+// Implementation: one fused sweep per component (add_momentum_terms). Every flux/stress is
+// evaluated once and kept in a row (x), a row (y) and a plane (z) buffer for the next face, so
+// the arithmetic is exactly that of the formulas above (bitwise the same as evaluating each
+// side separately). OpenMP splits the k range into contiguous chunks; each chunk first
+// evaluates the z-fluxes of the plane below it, so the result does not depend on the number
+// of threads.
 #pragma once
 #include <array>
 #include <string>
@@ -41,5 +48,12 @@ void add_advection(const MacGrid& g, int d, Advection scheme, double rho, const 
 
 void add_viscous(const MacGrid& g, int d, double mu, const std::array<const Field*, 3>& vel, const Field& eps_cell,
                  const FaceRange& range, Field& rhs);
+
+// Both terms in one sweep: rhs = (rhs - [advection divergence]/dx) + [viscous divergence]/dx,
+// the same operations in the same order as add_advection followed by add_viscous.
+// `advect` / mu > 0 switch the two parts.
+void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, double rho, double mu,
+                        const std::array<const Field*, 3>& vel, const std::array<const Field*, 3>& eps_face,
+                        const Field& eps_cell, const FaceRange& range, Field& rhs);
 
 }  // namespace cgdem::fluid
