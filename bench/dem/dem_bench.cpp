@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <ctime>
+
 #include "bench/bench.hpp"
 #include "core/timers.hpp"
 #include "io/particle_csv.hpp"
@@ -40,8 +42,10 @@ int run_dem_bench(const DemBenchArgs& args) {
   dem.step();  // first build and forces, not timed
   dem.timers().reset();
   Stopwatch clock;
+  const std::clock_t cpu0 = std::clock();
   for (long k = 0; k < args.steps; ++k) dem.step();
   const double wall = clock.seconds();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double rate = static_cast<double>(bed.size()) * args.steps / wall;
   EnergyBudget e = dem.energy();
   fmt::print("bench dem: {} particles of {:g} m, {} steps, {} thread(s), {:.3f} s\n", bed.size(), d, args.steps,
@@ -49,7 +53,15 @@ int run_dem_bench(const DemBenchArgs& args) {
   fmt::print("neighbour entries {} ({:.1f} per particle), contacts {}, list builds {}, E_kin {:.4g} J\n",
              dem.pair_entries(), static_cast<double>(dem.pair_entries()) / bed.size(), dem.contact_count(),
              dem.neighbor_builds(), e.kinetic_translational + e.kinetic_rotational);
+  // CPU time of the process over the loop: on a shared machine, wall > cpu / threads means
+  // the run did not have its cores to itself.
+  fmt::print("processor time {:.3f} s ({:.2f} of {} thread(s) busy), particle-steps per processor-second {:.4e}\n",
+             cpu, cpu / wall, args.threads, static_cast<double>(bed.size()) * args.steps / cpu);
   fmt::print("{}", dem.timers().table("per-phase time"));
+  // To check that a change of the engine left the trajectory alone (compare across builds).
+  fmt::print("state: E_kin {:.17g} E_pot {:.17g} dissipated {:.17g} + {:.17g} J\n",
+             e.kinetic_translational + e.kinetic_rotational, e.potential, e.dissipated_damping,
+             e.dissipated_friction);
   fmt::print("particle-steps/s: {:.4e}\n", rate);
   return 0;
 }
