@@ -11,9 +11,9 @@
 //   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w (c_p u_f - J_p/dt_f) / V_cell (eq. 14)
 //   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
 //                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
-//   6. correction       each parcel receives the change of its air forces over the step,
-//                       dt_f [c_p (u^{n+1} - u_f) - V (grad p^{n+1} - grad p^n)]: the drag
-//                       exchange conserves momentum exactly (exchange.hpp)
+//   6. correction       each parcel receives the change of its drag over the step,
+//                       dt_f c_p (u^{n+1} - u_f): the drag exchange conserves momentum
+//                       exactly; the pressure force lags one step (exchange.hpp says why)
 // Both phases treat the drag implicitly, so dt_f may exceed the air's drag relaxation time
 // eps rho_f/beta (~1e-5 s in a packed bed) by orders of magnitude.
 //

@@ -15,6 +15,18 @@ Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species,
   }
   cells_ = cell_lattice(g_, periodic_);
   for (int d = 0; d < 3; ++d) faces_[d] = face_lattice(g_, d, periodic_);
+  for (int d = 0; d < 3; ++d) {
+    blocked_[d] = fluid::make_face_field(g_, d);
+    const auto e = blocked_[d].extent();
+    for (int h = 0; h < 2; ++h) {
+      if (params_.bc[2 * d + h].type != fluid::BcType::Wall) continue;
+      const int f = h == 0 ? 0 : e[d] - 1;
+      for (int k = 0; k < e[2]; ++k)
+        for (int j = 0; j < e[1]; ++j)
+          for (int i = 0; i < e[0]; ++i)
+            if (std::array<int, 3>{i, j, k}[d] == f) blocked_[d](i, j, k) = 1;
+    }
+  }
 }
 
 Weights Exchange::cell_weights(const Vec3& x, const fluid::Field& layout) const {
@@ -24,7 +36,7 @@ Weights Exchange::cell_weights(const Vec3& x, const fluid::Field& layout) const 
 
 Weights Exchange::face_weights(int d, const Vec3& x, const fluid::Field& layout) const {
   const bool w = walls_ && walls_->valid && walls_->any_solid;
-  return masked(tsc_stencil(faces_[d], x), w ? walls_->alpha_face[d] : no_alpha_, layout);
+  return masked(tsc_stencil(faces_[d], x), w ? walls_->alpha_face[d] : no_alpha_, blocked_[d], layout);
 }
 
 VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
@@ -91,15 +103,15 @@ void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const 
 }
 
 void Exchange::correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const {
-  const auto grad = pressure_gradient(air);
   const int n = static_cast<int>(p.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
-    const AirSample a = sample(air, grad, p.x[i]);
-    const Vec3 dj = dt_f * (p.drag[i] * (a.u - p.u_fluid[i]) - (volume_[p.species[i]] * a.grad_p + p.f_ext[i]));
+    Vec3 u;
+    for (int d = 0; d < 3; ++d) u[d] = interpolate(face_weights(d, p.x[i], air.vel(d)), air.vel(d));
+    const Vec3 dj = (dt_f * p.drag[i]) * (u - p.u_fluid[i]);
     const Vec3 v0 = p.v[i];
     p.v[i] += p.inv_mass[i] * dj;
-    p.j_drag[i] += dt_f * p.drag[i] * (a.u - p.u_fluid[i]);
+    p.j_drag[i] += dj;
     p.w_fluid[i] += dot(dj, 0.5 * (v0 + p.v[i]));
   }
 }

@@ -17,17 +17,23 @@
 //                   u); c_p vbar_p = c_p u_f - J_p/dt_f with J_p the drag impulse the parcel
 //                   received over the step (Particles::j_drag): vbar is the drag-weighted
 //                   mean parcel velocity, so the air gets exactly -J_p when u stays u_f.
-//   end-of-step     the parcels then receive the difference between the air forces at the
-//   correction      end of the step and those they were given:
-//                   dv_p = dt_f [c_p (u^{n+1}(x_p) - u_f) - V_p (grad p^{n+1}(x_p) - grad p^n)]/m_p
+//   end-of-step     the parcels then receive the difference between the drag at the end of
+//   correction      the step and the drag they were given:
+//                   dv_p = dt_f c_p (u^{n+1}(x_p) - u_f) / m_p
 //                   which makes the drag exchange exactly momentum-conserving (deposit and
 //                   interpolation use the same weights: sum_f w_f K u = sum_p c_p u(x_p)),
-//                   i.e. implicit in both phases.
+//                   i.e. implicit in both phases. The pressure force is NOT corrected the
+//                   same way: applied as a kick, the change of grad p over a step drives a
+//                   period-2 instability of a free packed bed at fluid steps >= 1e-3 s (the
+//                   d(eps)/dt source makes p stiff in the parcel positions); it lags by one
+//                   fluid step instead, a momentum error of first order in dt_f.
 //
 // Walls: every weight is multiplied by (1 - alpha) of its node (cell or face) and the
 // weights are rescaled to sum 1 (kernel.hpp, masked): parcels next to the die floor put
 // their volume into the air cells above it, not into the floor, and drag is exchanged only
-// with faces where the air moves. Conservation and adjointness hold as before.
+// with faces where the air moves. The boundary faces of the domain's wall sides are
+// masked the same way (prescribed velocity: a deposit there would be lost to the wall).
+// Conservation and adjointness hold as before.
 // Deposits run serially in particle order (deterministic); gathers run in parallel.
 #pragma once
 #include <vector>
@@ -66,8 +72,8 @@ class Exchange {
   // K and Kv of src (resized to the face layout) from p.drag, p.u_fluid and p.j_drag
   // accumulated over a fluid step of dt_f.
   void parcels_to_air(const Particles& p, double dt_f, fluid::Sources& src) const;
-  // End-of-step correction of the parcel velocities (and their fluid work) from the air at
-  // t^{n+1}; reads p.drag, p.u_fluid, p.f_ext as set by air_to_parcels at t^n.
+  // End-of-step drag correction of the parcel velocities (and their fluid work) from the air
+  // velocity at t^{n+1}; reads p.drag, p.u_fluid as set by air_to_parcels at t^n.
   void correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const;
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
@@ -88,6 +94,9 @@ class Exchange {
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
   const fluid::IbmFractions* walls_ = nullptr;
   fluid::Field no_alpha_;
+  // 1 on the boundary faces of the domain's Wall sides (their velocity is prescribed, so
+  // drag deposited there would never reach the air), 0 elsewhere.
+  std::array<fluid::Field, 3> blocked_;
 
   fluid::MacGrid g_;
   ExchangeParams params_;

@@ -70,12 +70,20 @@ Weights flatten(const Stencil& s, const fluid::Field& layout) {
 }
 
 Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& layout) {
+  return masked(s, alpha, fluid::Field{}, layout);
+}
+
+Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& blocked, const fluid::Field& layout) {
   Weights f = flatten(s, layout);
-  if (alpha.empty()) return f;
-  const double* al = alpha.data();
+  if (alpha.empty() && blocked.empty()) return f;
   double sum = 0;
   std::array<double, 27> w;
-  for (int n = 0; n < 27; ++n) sum += (w[n] = f.w[n] * (1 - al[f.idx[n]]));
+  for (int n = 0; n < 27; ++n) {
+    w[n] = f.w[n];
+    if (!alpha.empty()) w[n] *= 1 - alpha.data()[f.idx[n]];
+    if (!blocked.empty()) w[n] *= 1 - blocked.data()[f.idx[n]];
+    sum += w[n];
+  }
   if (sum > 1e-12) {
     const double inv = 1 / sum;
     for (int n = 0; n < 27; ++n) f.w[n] = w[n] * inv;

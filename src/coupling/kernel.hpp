@@ -52,6 +52,9 @@ struct Weights {
 Weights flatten(const Stencil& s, const fluid::Field& layout);
 // `layout` gives the index layout (any field of the lattice); alpha may be empty (no walls).
 Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& layout);
+// Two masks at once: weight x (1 - alpha) x (1 - blocked), e.g. wall fractions and the
+// prescribed faces on the domain's wall sides.
+Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& blocked, const fluid::Field& layout);
 
 void deposit(const Weights& s, double value, fluid::Field& f);
 double interpolate(const Weights& s, const fluid::Field& f);
