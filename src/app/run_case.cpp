@@ -182,13 +182,34 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
   const std::string last_good = (out / "last_good.h5").string();
   const std::string checkpoint = (out / "checkpoint.bin").string();
+  // Parcels are never lost silently: the count (present + removed) must stay what it was,
+  // and every new departure or tunnelling is announced when it is seen.
+  const long n_total = static_cast<long>(dem->particles().size()) + dem->removed();
+  long seen_removed = dem->removed(), seen_inside = 0;
+  auto account_parcels = [&](long inside) {
+    const long now = static_cast<long>(dem->particles().size()) + dem->removed();
+    if (now != n_total)
+      throw RunError(fmt::format("t = {:.6g} s: {} parcels present + {} removed = {}, but the run has {} "
+                                 "(a parcel was lost without being counted)",
+                                 dem->time(), dem->particles().size(), dem->removed(), now, n_total));
+    if (dem->removed() > seen_removed)
+      fmt::print(stderr, "cgdem: warning: t = {:.6g} s: {} more parcel(s) left the domain ({} in all)\n",
+                 dem->time(), dem->removed() - seen_removed, dem->removed());
+    if (inside > seen_inside)
+      fmt::print(stderr, "cgdem: warning: t = {:.6g} s: {} parcel centre(s) inside a wall (tunnelled)\n",
+                 dem->time(), inside);
+    seen_removed = dem->removed();
+    seen_inside = inside;
+  };
   auto write_energy = [&]() {
     EnergyBudget e = dem->energy();
     e.work_fluid = dem->fluid_work();
+    const long inside = count_inside_walls(*dem);
+    account_parcels(inside);
     std::fprintf(energy, "%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%zu,%ld,%ld\n",
                  dem->time(), e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic,
                  e.dissipated_damping, e.dissipated_friction, e.work_walls, e.work_fluid, e.balance(), e.momentum.x,
-                 e.momentum.y, e.momentum.z, e.mass, dem->particles().size(), dem->removed(), count_inside_walls(*dem));
+                 e.momentum.y, e.momentum.z, e.mass, dem->particles().size(), dem->removed(), inside);
     std::fflush(energy);
     if (diag_csv) {
       std::fprintf(diag_csv, "%s\n",

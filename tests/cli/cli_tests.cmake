@@ -41,3 +41,8 @@ foreach(variant vacuum air moving_wall)
                    -P ${PROJECT_SOURCE_DIR}/tests/cli/restart.cmake)
   set_tests_properties(cli.restart_is_bit_identical_${variant} PROPERTIES LABELS cli)
 endforeach()
+# Parcels leaving the domain are announced and counted.
+add_test(NAME cli.escaping_parcels_are_reported
+         COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/escape.toml --output ${PROJECT_BINARY_DIR}/cli_out/escape)
+set_tests_properties(cli.escaping_parcels_are_reported PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "more parcel\\(s\\) left the domain.*particles 1[0-9] \\(left the domain: [1-9],")
