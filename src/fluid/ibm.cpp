@@ -1,20 +1,128 @@
 #include "fluid/ibm.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cgdem::fluid {
 
 namespace {
 
-// Fraction inside the walls of the cube of edge dx centred at x; counts sub-sampled boxes.
-double box_fraction(const geometry::Scene::Frame& f, const Vec3& x, double dx, int samples, long& sampled) {
-  const double h = 0.5 * dx;
-  const double pc = f.phi(x);
-  const double half_diag = h * std::sqrt(3.0);
+using geometry::Aabb;
+using geometry::Scene;
+
+struct Parts {
+  std::vector<int> fixed, moving;  // part indices of static / moving bodies, in scene order
+};
+
+Parts split_parts(const Scene& scene) {
+  Parts p;
+  for (size_t i = 0; i < scene.parts().size(); ++i)
+    (scene.bodies()[scene.parts()[i].body].motion.is_static() ? p.fixed : p.moving).push_back(static_cast<int>(i));
+  return p;
+}
+
+// Centre of box q of array a (0: cells, 1 + d: d-faces).
+Vec3 box_centre(const MacGrid& g, int a, int i, int j, int k) {
+  return a == 0 ? g.cell_centre(i, j, k) : g.face_centre(a - 1, i, j, k);
+}
+
+std::array<int, 3> box_extent(const MacGrid& g, int a) { return a == 0 ? g.n() : g.face_extent(a - 1); }
+
+// min over `parts` of the signed distance at x, and the first part reaching it (-1 if none).
+double nearest_of(const Scene::Frame& f, const std::vector<int>& parts, const Vec3& x, int& which) {
+  double m = INFINITY;
+  which = -1;
+  for (int p : parts) {
+    const double d = f.part_distance(p, x);
+    if (d < m) m = d, which = p;
+  }
+  return m;
+}
+
+// Fraction of the cube [x - h, x + h] inside the walls when the union of `parts` is all that
+// can cover it: the box and sample positions of Scene::Frame::solid_fraction (n^3 midpoints),
+// each sample tested only against the parts whose bounds contain it.
+double sampled_fraction(const Scene::Frame& f, const std::vector<int>& parts, const std::vector<Aabb>& bounds,
+                        const Vec3& x, double h, int n) {
+  const Vec3 lo = x - Vec3{h, h, h}, hi = x + Vec3{h, h, h};
+  int inside = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Vec3 s{lo.x + (i + 0.5) * (hi.x - lo.x) / n, lo.y + (j + 0.5) * (hi.y - lo.y) / n,
+                     lo.z + (k + 0.5) * (hi.z - lo.z) / n};
+        for (size_t q = 0; q < parts.size(); ++q)
+          if (bounds[q].contains(s) && f.part_distance(parts[q], s) < 0) {
+            ++inside;
+            break;
+          }
+      }
+  return static_cast<double>(inside) / (n * n * n);
+}
+
+// Box fraction with phi at the centre given (phi over `parts`): the exact 0 / 1 shortcuts of
+// solid_fraction, else the samples.
+double box_fraction(const Scene::Frame& f, const std::vector<int>& parts, const std::vector<Aabb>& bounds,
+                    const Vec3& x, double pc, double h, int n, long& sampled) {
+  const double half_diag = 0.5 * norm(Vec3{2 * h, 2 * h, 2 * h});
   if (pc >= half_diag) return 0.0;
   if (pc <= -half_diag) return 1.0;
   ++sampled;
-  return f.solid_fraction(x - Vec3{h, h, h}, x + Vec3{h, h, h}, samples);
+  return sampled_fraction(f, parts, bounds, x, h, n);
+}
+
+// The parts of `all` whose bounds come within r of x.
+void candidates(const std::vector<int>& all, const std::vector<Aabb>& bounds, const Vec3& x, double r,
+                std::vector<int>& out, std::vector<Aabb>& out_b) {
+  out.clear(), out_b.clear();
+  for (size_t q = 0; q < all.size(); ++q)
+    if (bounds[q].distance(x) <= r) out.push_back(all[q]), out_b.push_back(bounds[q]);
+}
+
+// Fills the static cache: every box of every array against the static parts only.
+void build_static(const MacGrid& g, const Scene::Frame& frame, const Parts& parts, int samples,
+                  IbmFractions::StaticCache& c, long& sampled) {
+  std::vector<Aabb> fb;
+  for (int p : parts.fixed) fb.push_back(frame.part_bounds(p));
+  const double h = 0.5 * g.dx, r = 0.5 * norm(Vec3{g.dx, g.dx, g.dx});
+  bool any = false;
+  for (int a = 0; a < 4; ++a) {
+    const std::array<int, 3> e = box_extent(g, a);
+    c.alpha[a] = Field(e);
+    c.phi[a] = Field(e, INFINITY);
+    c.nearest[a].assign(static_cast<size_t>(e[0]) * e[1] * e[2], -1);
+    if (a > 0) c.ub[a - 1] = Field(e);
+#pragma omp parallel for schedule(dynamic) if (g.cells() > kOmpMinWork) reduction(+ : sampled) reduction(|| : any)
+    for (int k = 0; k < e[2]; ++k) {
+      std::vector<int> cand;
+      std::vector<Aabb> cand_b;
+      for (int j = 0; j < e[1]; ++j)
+        for (int i = 0; i < e[0]; ++i) {
+          const Vec3 x = box_centre(g, a, i, j, k);
+          int which;
+          const double ps = nearest_of(frame, parts.fixed, x, which);
+          c.phi[a](i, j, k) = ps;
+          c.nearest[a][i + static_cast<size_t>(e[0]) * (j + static_cast<size_t>(e[1]) * k)] = which;
+          candidates(parts.fixed, fb, x, r, cand, cand_b);
+          const double al = box_fraction(frame, cand, cand_b, x, ps, h, samples, sampled);
+          c.alpha[a](i, j, k) = al;
+          if (al > 0) {
+            any = true;
+            if (a > 0) c.ub[a - 1](i, j, k) = frame.part_velocity(which)[a - 1];
+          }
+        }
+    }
+  }
+  c.any = any;
+}
+
+// Index range [lo, hi) along axis d of the boxes of array a whose centres lie in [x0, x1].
+std::array<int, 2> index_range(const MacGrid& g, int a, int d, double x0, double x1, int n) {
+  const double off = (a == d + 1) ? 0.0 : 0.5;  // face arrays sit on the lines along their axis
+  const double o = g.origin[d];
+  const double lo = std::clamp(std::floor((x0 - o) / g.dx - off), -1.0, double(n)),
+               hi = std::clamp(std::ceil((x1 - o) / g.dx - off) + 1, 0.0, double(n));
+  return {static_cast<int>(lo), static_cast<int>(hi) < 0 ? 0 : static_cast<int>(hi)};
 }
 
 }  // namespace
@@ -22,34 +130,85 @@ double box_fraction(const geometry::Scene::Frame& f, const Vec3& x, double dx, i
 bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int samples, IbmFractions& ibm) {
   if (samples < 1) throw Error("IBM: the number of sub-samples per axis must be >= 1");
   if (ibm.valid && ibm.offsets == frame.offset) return false;
-  for (int d = 0; d < 3; ++d) {
-    ibm.alpha_face[d] = make_face_field(g, d);
-    ibm.ub_face[d] = make_face_field(g, d);
-  }
-  ibm.alpha_cell = make_cell_field(g);
   ibm.offsets = frame.offset;
   ibm.valid = true;
-  ibm.any_solid = false;
   ibm.sampled_faces = 0;
-  if (frame.scene == nullptr || frame.scene->empty()) return true;
-
+  if (frame.scene == nullptr || frame.scene->empty()) {
+    for (int d = 0; d < 3; ++d) {
+      ibm.alpha_face[d] = make_face_field(g, d);
+      ibm.ub_face[d] = make_face_field(g, d);
+    }
+    ibm.alpha_cell = make_cell_field(g);
+    ibm.any_solid = false;
+    ibm.cache = {};
+    return true;
+  }
+  const Scene& scene = *frame.scene;
+  const Parts parts = split_parts(scene);
+  auto& c = ibm.cache;
+  bool same_static = c.valid && c.scene == &scene && c.samples == samples && c.n == g.n() &&
+                     c.offsets.size() == frame.offset.size();
+  for (size_t b = 0; same_static && b < frame.offset.size(); ++b)
+    if (scene.bodies()[b].motion.is_static() && !(c.offsets[b] == frame.offset[b])) same_static = false;
   long sampled = 0;
-  bool any = false;
-  for (int d = -1; d < 3; ++d) {  // d = -1: cells
-    Field& a = d < 0 ? ibm.alpha_cell : ibm.alpha_face[d];
-    std::array<int, 3> e = a.extent();
-#pragma omp parallel for schedule(dynamic) if (g.cells() > kOmpMinWork) reduction(+ : sampled) reduction(|| : any)
-    for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i) {
-          Vec3 x = d < 0 ? g.cell_centre(i, j, k) : g.face_centre(d, i, j, k);
-          double al = box_fraction(frame, x, g.dx, samples, sampled);
-          a(i, j, k) = al;
-          if (al > 0) {
-            any = true;
-            if (d >= 0) ibm.ub_face[d](i, j, k) = frame.wall_velocity(x)[d];
+  if (!same_static) {
+    build_static(g, frame, parts, samples, c, sampled);
+    c.scene = &scene, c.offsets = frame.offset, c.samples = samples, c.n = g.n(), c.valid = true;
+    c.have_region = false;
+    ibm.alpha_cell = c.alpha[0];
+    for (int d = 0; d < 3; ++d) ibm.alpha_face[d] = c.alpha[d + 1], ibm.ub_face[d] = c.ub[d];
+  }
+  // Region to re-evaluate: the moving parts' bounds now and at the last call.
+  std::vector<Aabb> mb, fb;
+  for (int p : parts.moving) mb.push_back(frame.part_bounds(p));
+  for (int p : parts.fixed) fb.push_back(frame.part_bounds(p));
+  const double h = 0.5 * g.dx, r = 0.5 * norm(Vec3{g.dx, g.dx, g.dx});
+  bool any = c.any;
+  if (!mb.empty()) {
+    Aabb reg{mb[0].lo, mb[0].hi};
+    for (const Aabb& b : mb) reg.lo = cmin(reg.lo, b.lo), reg.hi = cmax(reg.hi, b.hi);
+    Aabb now = reg;
+    if (c.have_region) reg.lo = cmin(reg.lo, c.region.lo), reg.hi = cmax(reg.hi, c.region.hi);
+    c.region = now, c.have_region = true;
+    const double m = r + g.dx;
+    for (int a = 0; a < 4; ++a) {
+      const std::array<int, 3> e = box_extent(g, a);
+      std::array<std::array<int, 2>, 3> ir;
+      for (int d = 0; d < 3; ++d) ir[d] = index_range(g, a, d, reg.lo[d] - m, reg.hi[d] + m, e[d]);
+      ir[0][0] = std::max(ir[0][0], 0), ir[1][0] = std::max(ir[1][0], 0), ir[2][0] = std::max(ir[2][0], 0);
+      Field& al_out = a == 0 ? ibm.alpha_cell : ibm.alpha_face[a - 1];
+      const long work = long(ir[0][1] - ir[0][0]) * (ir[1][1] - ir[1][0]) * (ir[2][1] - ir[2][0]);
+#pragma omp parallel for schedule(dynamic) if (work > kOmpMinWork / 4) reduction(+ : sampled) reduction(|| : any)
+      for (int k = ir[2][0]; k < ir[2][1]; ++k) {
+        std::vector<int> cm, cs, call;
+        std::vector<Aabb> cmb, csb, callb;
+        for (int j = ir[1][0]; j < ir[1][1]; ++j)
+          for (int i = ir[0][0]; i < ir[0][1]; ++i) {
+            const Vec3 x = box_centre(g, a, i, j, k);
+            const size_t q = i + static_cast<size_t>(e[0]) * (j + static_cast<size_t>(e[1]) * k);
+            candidates(parts.moving, mb, x, r, cm, cmb);
+            double al;
+            int which = c.nearest[a][q];
+            double dist = c.phi[a](i, j, k);
+            if (cm.empty()) {
+              al = c.alpha[a](i, j, k);  // no moving part within reach: the static value
+            } else {
+              int wm;
+              const double pm = nearest_of(frame, cm, x, wm);
+              const double pc = std::min(dist, pm);
+              if (pm < dist || (pm == dist && wm < which)) which = wm, dist = pm;
+              candidates(parts.fixed, fb, x, r, cs, csb);
+              call = cs, callb = csb;
+              call.insert(call.end(), cm.begin(), cm.end());
+              callb.insert(callb.end(), cmb.begin(), cmb.end());
+              al = box_fraction(frame, call, callb, x, pc, h, samples, sampled);
+            }
+            al_out(i, j, k) = al;
+            if (al > 0) any = true;
+            if (a > 0) ibm.ub_face[a - 1](i, j, k) = al > 0 ? frame.part_velocity(which)[a - 1] : 0.0;
           }
-        }
+      }
+    }
   }
   ibm.any_solid = any;
   ibm.sampled_faces = sampled;

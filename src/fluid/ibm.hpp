@@ -8,9 +8,18 @@
 // U_B on a face is the velocity of the body nearest to the face centre (eq. 18); it is set
 // only where alpha > 0 (zero elsewhere).
 //
-// Cost: solid_fraction returns after one phi evaluation when the box is farther than its
-// half-diagonal from every surface, so only the faces near a surface are sub-sampled.
-// The fractions are recomputed only when a body has moved since the last call.
+// Cost: only boxes within their half-diagonal of a surface are sub-sampled. The fractions
+// are recomputed only when a body has moved since the last call, and then only near the
+// moving bodies: the fractions, phi and nearest part of the STATIC bodies alone are cached
+// (recomputed when a static body's offset, the grid or `samples` change), and a box is
+// re-evaluated only inside the union of the moving parts' bounds at this and the previous
+// call, widened by a box half-diagonal plus one cell. There a box takes the static value
+// when no moving part's bounds come within its half-diagonal; otherwise its samples are
+// tested against the parts whose bounds contain them. This is the same count of samples
+// inside the walls as testing every part at every sample (phi < 0 exactly inside a part, and
+// a part's bounds contain it), so alpha is identical to a full recomputation; U_B is that of
+// the nearest part as before (identical when the parts' signed distances are exact, e.g.
+// boxes).
 #pragma once
 #include <array>
 #include <vector>
@@ -30,6 +39,22 @@ struct IbmFractions {
   // Cached body offsets of the last computation (recompute when they change).
   std::vector<Vec3> offsets;
   bool valid = false;
+
+  // Static bodies alone, per box array (0: cells, 1 + d: d-faces): fraction, phi at the box
+  // centre, nearest static part (-1: none) and its velocity component.
+  struct StaticCache {
+    const geometry::Scene* scene = nullptr;
+    std::vector<Vec3> offsets;  // of every body; only the static ones are compared
+    int samples = 0;
+    std::array<int, 3> n{};
+    std::array<Field, 4> alpha, phi;
+    std::array<std::vector<int>, 4> nearest;
+    std::array<Field, 3> ub;
+    bool any = false;
+    bool valid = false;
+    bool have_region = false;
+    geometry::Aabb region;  // moving parts' bounds at the last call (world)
+  } cache;
 };
 
 // Recomputes the fractions for `frame` if the bodies have moved (or on first use).
