@@ -16,12 +16,31 @@
 // evaluating it from the partner's side (n -> -n, v_rel -> -v_rel, xi -> -xi) gives
 // exactly the negated force: Newton's third law holds to the last bit.
 #pragma once
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "core/vec3.hpp"
 
+// IEEE square root with vector variants (x86-64 vector function ABI, defined in
+// contact_table.cpp): a loop calling it vectorizes, while std::sqrt does not without
+// -fno-math-errno. Same result as std::sqrt, lane by lane.
+extern "C" {
+#pragma omp declare simd notinbranch
+double cgdem_sqrt(double);
+}
+
 namespace cgdem::contact {
+
+// c ? a : b without a branch (a loop using it needs no if-conversion to vectorize).
+inline double select(bool c, double a, double b) {
+  const uint64_t m = -static_cast<uint64_t>(c);
+  return std::bit_cast<double>((std::bit_cast<uint64_t>(a) & m) | (std::bit_cast<uint64_t>(b) & ~m));
+}
+inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
+  return {select(c, a.x, b.x), select(c, a.y, b.y), select(c, a.z, b.z)};
+}
 
 // Parameters of one kind of contact (a species pair, or a species and the walls).
 struct Params {
@@ -58,12 +77,14 @@ inline double contact_time(double e, double m_eff, double k) {
 struct History {
   Vec3 xi;          // tangential spring displacement [m]
   Vec3 ft;          // last tangential force on this particle [N]
-  double fd = 0;    // last normal dashpot force magnitude, l^3 eta v_n [N]
-  double vn = 0;    // last normal relative velocity [m/s]
+  double vn = 0;    // last normal relative velocity [m/s] (the dashpot force was l^3 eta vn)
   double ftvt = 0;  // ft . v_t of the last step [W]
-  bool empty() const { return xi == Vec3{} && ft == Vec3{} && fd == 0; }
+  // Eight doubles: one cache line, and a group size the vectorizer handles.
+  bool empty() const {
+    return (xi.x == 0) & (xi.y == 0) & (xi.z == 0) & (ft.x == 0) & (ft.y == 0) & (ft.z == 0) & (vn == 0);
+  }
   // The same contact seen from the partner's side.
-  History flipped() const { return {-xi, -ft, fd, vn, ftvt}; }
+  History flipped() const { return {-xi, -ft, vn, ftvt}; }
 };
 
 // Energy bookkeeping of one contact over one step.
@@ -74,6 +95,8 @@ struct Work {
 
 // Force on this particle; updates the history h. Tangential force is also returned
 // separately (for the torque). `work` receives the dissipated energy in dt.
+// Written without branches (both cases computed, one selected) so that a loop over many
+// contacts vectorizes; a lane computes exactly what the branching code would.
 inline Vec3 force(const Params& p, const Vec3& n, double delta, const Vec3& v_rel, History& h, double dt,
                   Vec3& f_t, Work& work) {
   const double vn = dot(v_rel, n);
@@ -85,28 +108,26 @@ inline Vec3 force(const Params& p, const Vec3& n, double delta, const Vec3& v_re
   // History: keep xi in the current tangent plane with its length, then integrate.
   const Vec3& xi = h.xi;
   const double xi_len2 = norm2(xi);
-  Vec3 s = xi;
-  if (xi_len2 > 0) {
-    const double xn = dot(xi, n);
-    s -= xn * n;
-    const double s_len2 = xi_len2 - xn * xn;
-    if (s_len2 > 0) s *= std::sqrt(xi_len2 / s_len2);
-  }
+  const double xn = dot(xi, n);
+  Vec3 s = xi - xn * n;
+  const double s_len2 = xi_len2 - xn * xn;  // 0 when xi = 0
+  s *= select(s_len2 > 0, cgdem_sqrt(xi_len2 / s_len2), 1.0);
   const double e_spring_old = 0.5 * p.l3 * p.k * xi_len2;  // the rotation keeps the length
   s += dt * vt;
 
   f_t = -p.l3 * (p.k * s + p.eta * vt);  // eq. (7), sticking branch
   const double ft2 = norm2(f_t), limit = p.mu * std::fabs(fn_mag);
-  if (ft2 > limit * limit) {  // sliding: scale onto the Coulomb cone, reset the spring
-    f_t *= limit / std::sqrt(ft2);
-    s = -(f_t / p.l3 + p.eta * vt) / p.k;
-  }
+  // Sliding: scale onto the Coulomb cone, reset the spring to match.
+  const bool sliding = ft2 > limit * limit;
+  f_t *= select(sliding, limit / cgdem_sqrt(ft2), 1.0);
+  s = select(sliding, -(f_t / p.l3 + p.eta * vt) / p.k, s);
   const double e_spring_new = 0.5 * p.l3 * p.k * norm2(s);
   const double ftvt = dot(f_t, vt);
   // This step's force at v^{n+1/2}, plus the second half of the previous step's force.
-  work.damping_n = fd * vn * dt + 0.5 * dt * h.fd * (vn - h.vn);
+  const double fd_old = p.l3 * p.eta * h.vn;  // the last step's dashpot force, as computed then
+  work.damping_n = fd * vn * dt + 0.5 * dt * fd_old * (vn - h.vn);
   work.friction = -ftvt * dt - (e_spring_new - e_spring_old) - 0.5 * dt * (dot(h.ft, vt) - h.ftvt);
-  h = {s, f_t, fd, vn, ftvt};
+  h = {s, f_t, vn, ftvt};
   return f_n + f_t;
 }
 
@@ -116,7 +137,7 @@ inline Vec3 force(const Params& p, const Vec3& n, double delta, const Vec3& v_re
 inline void finish(const Params& p, const Vec3& n, const Vec3& v_rel, History& h, double dt, Work& work) {
   const double vn = dot(v_rel, n);
   const Vec3 vt = v_rel - vn * n;
-  work.damping_n = 0.5 * dt * h.fd * (vn - h.vn);
+  work.damping_n = 0.5 * dt * (p.l3 * p.eta * h.vn) * (vn - h.vn);
   work.friction = 0.5 * p.l3 * p.k * norm2(h.xi) - 0.5 * dt * (dot(h.ft, vt) - h.ftvt);
   h = History{};
 }

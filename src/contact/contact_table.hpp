@@ -25,6 +25,7 @@ class ContactTable {
   ContactTable(const std::vector<Species>& species, const MaterialParams& m);
   const contact::Params& pair(int si, int sj) const { return pair_[si * n_ + sj]; }
   const contact::Params& wall(int s) const { return wall_[s]; }
+  int species_count() const { return n_; }
   // Collision times of the original contacts (equal to the parcels' for equal l).
   double pair_collision_time(int si, int sj) const;
   double wall_collision_time(int s) const;
