@@ -31,6 +31,7 @@ struct FluidBenchArgs {
   int time_order = 2;              // 1: Euler, 2: Heun (two projected stages)
   std::string method = "pcg-mg2";  // pressure solver
   double tolerance = 1e-8;         // relative residual of the pressure solves
+  double stage_tolerance = -1;     // of the Heun stage-1 solve (-1: the solver's default)
 };
 int run_fluid_bench(const FluidBenchArgs& args);
 

@@ -50,7 +50,9 @@ FluidSolver::FluidSolver(const MacGrid& g, FluidParams params, std::unique_ptr<p
     R0_[d] = make_face_field(g_, d);
     R1_[d] = make_face_field(g_, d);
     ustar_[d] = make_face_field(g_, d);
+    u1_[d] = make_face_field(g_, d);
   }
+  p1_ = make_cell_field(g_);
   rhs_.assign(g_.cells(), 0.0);
   phi_.assign(g_.cells(), 0.0);
 }
@@ -59,30 +61,38 @@ void FluidSolver::face_eps(const Field& eps_cell, Faces& E) const {
   for (int d = 0; d < 3; ++d) {
     std::array<int, 3> e = E[d].extent();
     const std::array<int, 3> dd = unit(d);
+    const long st = eps_cell.stride(d);
+#pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
     for (int k = -kGhost; k < e[2] + kGhost; ++k)
-      for (int j = -kGhost; j < e[1] + kGhost; ++j)
+      for (int j = -kGhost; j < e[1] + kGhost; ++j) {
+        const double* ec = eps_cell.data() + eps_cell.index(0, j, k);
+        double* out = E[d].data() + E[d].index(0, j, k);
         for (int i = -kGhost; i < e[0] + kGhost; ++i) {
           int im = i - dd[0], jm = j - dd[1], km = k - dd[2];
           bool inside = im >= -kGhost && jm >= -kGhost && km >= -kGhost && i < g_.nx + kGhost &&
                         j < g_.ny + kGhost && k < g_.nz + kGhost;
-          E[d](i, j, k) = inside ? 0.5 * (eps_cell(i, j, k) + eps_cell(im, jm, km)) : 1.0;
+          out[i] = inside ? 0.5 * (ec[i] + ec[i - st]) : 1.0;
         }
+      }
   }
 }
 
 // R = -div(E rho u u) + div(eps tau) + E rho g + f_explicit on the active faces.
-void FluidSolver::explicit_rhs(const FluidState& s, const Field& eps_cell, const Faces& E, const Sources& src,
-                               Faces& R) {
-  const std::array<const Field*, 3> vel{&s.u, &s.v, &s.w};
+void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces& E, const Sources& src, Faces& R) {
+  const std::array<const Field*, 3> vel{v[0], v[1], v[2]};
   const std::array<const Field*, 3> ef{&E[0], &E[1], &E[2]};
   for (int d = 0; d < 3; ++d) {
     FaceRange r = active_range(g_, params_.bc, d);
-    R[d].fill(0.0);
-    for (int k = r[2][0]; k < r[2][1]; ++k)
-      for (int j = r[1][0]; j < r[1][1]; ++j)
-        for (int i = r[0][0]; i < r[0][1]; ++i)
-          R[d](i, j, k) = E[d](i, j, k) * params_.rho * params_.gravity[d] +  // eq. (13) eps rho g
-                          value_or_zero(src.f_explicit[d], i, j, k);
+    const Field& fe = src.f_explicit[d];
+#pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
+    for (int k = -kGhost; k < R[d].nk() + kGhost; ++k)
+      for (int j = -kGhost; j < R[d].nj() + kGhost; ++j)
+        for (int i = -kGhost; i < R[d].ni() + kGhost; ++i) {
+          const bool active = k >= r[2][0] && k < r[2][1] && j >= r[1][0] && j < r[1][1] && i >= r[0][0] && i < r[0][1];
+          R[d](i, j, k) = active ? E[d](i, j, k) * params_.rho * params_.gravity[d] +  // eq. (13) eps rho g
+                                       value_or_zero(fe, i, j, k)
+                                 : 0.0;
+        }
     add_momentum_terms(g_, d, true, params_.advection, params_.rho, params_.mu, vel, ef, eps_cell, r, R[d]);
   }
 }
@@ -117,50 +127,78 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
     check_source(src.Kv[d], g_, d, "Kv");
     check_source(src.f_explicit[d], g_, d, "f_explicit");
   }
-  for (int k = 0; k < g_.nz; ++k)
-    for (int j = 0; j < g_.ny; ++j)
-      for (int i = 0; i < g_.nx; ++i)
-        if (!(s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1))
-          throw Error(fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {})", i, j, k));
+  {
+    auto t = timers_.scope("checks");
+    auto ok = [&](int i, int j, int k) {
+      return s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1;
+    };
+    bool all_ok = true;
+#pragma omp parallel for schedule(static) reduction(&& : all_ok) if (g_.cells() > kOmpMinWork)
+    for (int k = 0; k < g_.nz; ++k)
+      for (int j = 0; j < g_.ny; ++j)
+        for (int i = 0; i < g_.nx; ++i) all_ok = all_ok && ok(i, j, k);
+    if (!all_ok)  // name the first bad cell
+      for (int k = 0; k < g_.nz; ++k)
+        for (int j = 0; j < g_.ny; ++j)
+          for (int i = 0; i < g_.nx; ++i)
+            if (!ok(i, j, k)) throw Error(fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {})", i, j, k));
+  }
   StepStats st;
   {
     auto t = timers_.scope("ibm");
     st.ibm_updated = update_ibm(g_, frame_end, params_.ibm_samples, ibm_);
   }
+  const Vel vel{&s.u, &s.v, &s.w};
   {
-    auto t = timers_.scope("predictor");
+    auto t = timers_.scope("ghosts, face eps");
     fill_scalar_ghosts(g_, params_.bc, s.eps, ScalarKind::ZeroGradient);
     fill_scalar_ghosts(g_, params_.bc, s.eps_old, ScalarKind::ZeroGradient);
     face_eps(s.eps_old, E_old_);
     face_eps(s.eps, E_new_);
     fill_velocity_ghosts(g_, params_.bc, s.u, s.v, s.w);
-    explicit_rhs(s, s.eps_old, E_old_, src, R0_);
+  }
+  {
+    auto t = timers_.scope("advection+viscous");
+    explicit_rhs(vel, s.eps_old, E_old_, src, R0_);
+  }
+  {
+    auto t = timers_.scope("predictor update");
     predict(s, R0_, src, dt, ustar_);
   }
+  set_pressure_coefficients(src, dt);
   if (params_.time_order == 2) {
     // Stage 1 result u^(1) (projected), then the Heun average of the explicit terms.
-    FluidState s1 = s;
-    project(s1, src, dt, ustar_, st);
-    auto t = timers_.scope("predictor");
-    fill_velocity_ghosts(g_, params_.bc, s1.u, s1.v, s1.w);
-    explicit_rhs(s1, s.eps, E_new_, src, R1_);
+    p1_ = s.p;
+    const Vel v1{&u1_[0], &u1_[1], &u1_[2]};
+    const bool loose = params_.stage_rel_tol > 0 && params_.stage_rel_tol != params_.pressure.rel_tol;
+    if (loose) ps_->set_rel_tol(params_.stage_rel_tol);
+    project(s, src, dt, ustar_, v1, p1_, st);
+    if (loose) ps_->set_rel_tol(params_.pressure.rel_tol);
+    st.stage_iterations = st.pressure_iterations;
+    {
+      auto t = timers_.scope("advection+viscous");
+      explicit_rhs(v1, s.eps, E_new_, src, R1_);
+    }
+    auto t = timers_.scope("predictor update");
     for (int d = 0; d < 3; ++d) {
       double* r0 = R0_[d].data();
       const double* r1 = R1_[d].data();
       const long n = static_cast<long>(R0_[d].extent()[0] + 2 * kGhost) * (R0_[d].extent()[1] + 2 * kGhost) *
                      (R0_[d].extent()[2] + 2 * kGhost);
+#pragma omp parallel for schedule(static) if (n > kOmpMinWork)
       for (long q = 0; q < n; ++q) r0[q] = 0.5 * (r0[q] + r1[q]);
     }
-    s.p = s1.p;  // initial guess
+    std::swap(s.p, p1_);  // initial guess
     predict(s, R0_, src, dt, ustar_);
   }
-  project(s, src, dt, ustar_, st);
-  fill_velocity_ghosts(g_, params_.bc, s.u, s.v, s.w);
+  project(s, src, dt, ustar_, vel, s.p, st);
+  auto t = timers_.scope("diagnostics");
   st.max_divergence = max_divergence(s, dt);
   double umax = 0;
   for (int d = 0; d < 3; ++d) {
     double m = 0;
     const Field& f = s.vel(d);
+#pragma omp parallel for schedule(static) reduction(max : m) if (g_.cells() > kOmpMinWork)
     for (int k = 0; k < f.nk(); ++k)
       for (int j = 0; j < f.nj(); ++j)
         for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
@@ -179,6 +217,7 @@ double FluidSolver::max_divergence(const FluidState& s, double dt) const {
     return 0.5 * (s.eps(i, j, k) + s.eps(i - e[0], j - e[1], k - e[2])) * s.vel(d)(i, j, k);
   };
   double m = 0;
+#pragma omp parallel for schedule(static) reduction(max : m) if (g_.cells() > kOmpMinWork)
   for (int k = 0; k < g_.nz; ++k)
     for (int j = 0; j < g_.ny; ++j)
       for (int i = 0; i < g_.nx; ++i) {

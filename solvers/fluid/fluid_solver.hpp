@@ -56,17 +56,24 @@ class FluidSolver {
  private:
   using Faces = std::array<Field, 3>;
   void face_eps(const Field& eps_cell, Faces& E) const;
-  void explicit_rhs(const FluidState& s, const Field& eps_cell, const Faces& E, const Sources& src, Faces& R);
+  using Vel = std::array<Field*, 3>;
+  void explicit_rhs(const Vel& vel, const Field& eps_cell, const Faces& E, const Sources& src, Faces& R);
   void predict(const FluidState& s, const Faces& R, const Sources& src, double dt, Faces& ustar);
-  void project(FluidState& s, const Sources& src, double dt, Faces& ustar, StepStats& st);
+  // Pressure p (initial guess in, solution out) and vel = ustar corrected; reads state.eps,
+  // state.eps_old.
+  void project(const FluidState& s, const Sources& src, double dt, Faces& ustar, const Vel& vel, Field& p,
+               StepStats& st);
+  void set_pressure_coefficients(const Sources& src, double dt);
 
   MacGrid g_;
   FluidParams params_;
   std::unique_ptr<pressure::PressureSolver> ps_;
   IbmFractions ibm_;
   PhaseTimers timers_;
-  Faces E_old_, E_new_, R0_, R1_, ustar_;
+  Faces E_old_, E_new_, R0_, R1_, ustar_, u1_;  // u1_: the projected Heun stage
+  Field p1_;
   std::vector<double> ax_, ay_, az_, rhs_, phi_;
+  std::array<std::vector<double>, 3> next_;
   bool coeffs_set_ = false;
 };
 

@@ -14,6 +14,11 @@ void DirectSolver::set_coefficients(const std::vector<double>& ax, const std::ve
   factor_ = std::make_unique<CholmodFactor>(op_);
 }
 
+void DirectSolver::set_rel_tol(double rel_tol) {
+  if (!(rel_tol > 0)) throw Error("pressure: rel_tol must be > 0");
+  opt_.rel_tol = rel_tol;
+}
+
 SolveStats DirectSolver::solve(const std::vector<double>& rhs, std::vector<double>& phi) {
   if (!factor_) throw Error("pressure: solve() called before set_coefficients()");
   check_solve_args(op_.grid(), rhs, phi);

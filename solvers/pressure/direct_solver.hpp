@@ -16,6 +16,7 @@ class DirectSolver : public PressureSolver {
   void set_coefficients(const std::vector<double>& ax, const std::vector<double>& ay,
                         const std::vector<double>& az) override;
   SolveStats solve(const std::vector<double>& rhs, std::vector<double>& phi) override;
+  void set_rel_tol(double rel_tol) override;
 
  private:
   SolverOptions opt_;

@@ -37,6 +37,11 @@ void KrylovSolver::set_coefficients(const std::vector<double>& ax, const std::ve
   have_coef_ = true;
 }
 
+void KrylovSolver::set_rel_tol(double rel_tol) {
+  if (!(rel_tol > 0)) throw Error("pressure: rel_tol must be > 0");
+  opt_.rel_tol = rel_tol;
+}
+
 SolveStats KrylovSolver::solve(const std::vector<double>& rhs, std::vector<double>& phi) {
   if (!have_coef_) throw Error("pressure: solve() called before set_coefficients()");
   check_solve_args(op_.grid(), rhs, phi);

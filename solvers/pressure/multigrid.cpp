@@ -80,25 +80,23 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
 }
 
 void MultigridPreconditioner::apply(const double* r, double* z) {
-  auto& L0 = lv_[0];
-  std::copy(r, r + L0.b.size(), L0.b.begin());
+  b0_ = r, x0_ = z;  // level 0 works in place on the caller's arrays
   vcycle(0);
-  std::copy(L0.x.begin(), L0.x.end(), z);
 }
 
 void MultigridPreconditioner::vcycle(int l) {
   Level& L = lv_[l];
+  const double* b = l == 0 ? b0_ : L.b.data();
+  double* x = l == 0 ? x0_ : L.x.data();
+  const long n = static_cast<long>(L.r.size());
   if (l == levels() - 1) {
-    coarse_->solve(L.b.data(), L.x.data());
+    coarse_->solve(b, x);
     return;
   }
   const Poisson7& A = *L.op;
-  std::fill(L.x.begin(), L.x.end(), 0.0);
-  for (int s = 0; s < nu_; ++s) {
-    A.gauss_seidel_color(L.b.data(), L.x.data(), 0);
-    A.gauss_seidel_color(L.b.data(), L.x.data(), 1);
-  }
-  A.residual(L.b.data(), L.x.data(), L.r.data());
+  std::fill(x, x + n, 0.0);
+  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 0);
+  A.residual(b, x, L.r.data());
   // Restriction R = P^T / 8 onto level l+1.
   const GridSpec &f = grids_[l], &c = grids_[l + 1];
   Level& C = lv_[l + 1];
@@ -120,13 +118,10 @@ void MultigridPreconditioner::vcycle(int l) {
   for (int k = 0; k < f.nz; ++k)
     for (int j = 0; j < f.ny; ++j) {
       const double* xc = C.x.data() + long(c.nx) * (j / 2 + long(c.ny) * (k / 2));
-      double* xf = L.x.data() + long(f.nx) * (j + long(f.ny) * k);
+      double* xf = x + long(f.nx) * (j + long(f.ny) * k);
       for (int i = 0; i < f.nx; ++i) xf[i] += xc[i / 2];
     }
-  for (int s = 0; s < nu_; ++s) {
-    A.gauss_seidel_color(L.b.data(), L.x.data(), 1);
-    A.gauss_seidel_color(L.b.data(), L.x.data(), 0);
-  }
+  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 1);
 }
 
 }  // namespace cgdem::pressure

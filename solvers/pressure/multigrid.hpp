@@ -39,6 +39,8 @@ class MultigridPreconditioner : public Preconditioner {
   std::vector<Level> lv_;
   std::unique_ptr<CholmodFactor> coarse_;
   int nu_;
+  const double* b0_ = nullptr;  // level 0: the caller's r and z
+  double* x0_ = nullptr;
 };
 
 }  // namespace cgdem::pressure

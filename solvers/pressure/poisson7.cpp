@@ -1,6 +1,8 @@
 // 7-point operator A = -div(a grad .) on the cell-centred grid; see poisson7.hpp.
 #include "solvers/pressure/poisson7.hpp"
 
+#include <omp.h>
+
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -138,6 +140,7 @@ void Poisson7::label_components() {
   std::vector<int> id_of_root(N, -1);
   comp_.assign(N, -1);
   comp_count_.clear();
+  floating_cells_.clear();
   n_floating_ = 0;
   for (long c = 0; c < N; ++c) {
     const int r = find_root(parent, c);
@@ -148,31 +151,70 @@ void Poisson7::label_components() {
     }
     comp_[c] = id_of_root[r];
     comp_count_[comp_[c]] += 1.0;
+    floating_cells_.push_back(c);
   }
 }
 
 void Poisson7::project_floating(double* v) const {
   if (n_floating_ == 0) return;
   std::vector<double> sum(n_floating_, 0.0);
-  const long N = n();
-  for (long c = 0; c < N; ++c)
-    if (comp_[c] >= 0) sum[comp_[c]] += v[c];
+  const long M = static_cast<long>(floating_cells_.size());
+  for (long q = 0; q < M; ++q) {  // ascending cell order, as a sweep over all cells
+    const long c = floating_cells_[q];
+    sum[comp_[c]] += v[c];
+  }
   for (int q = 0; q < n_floating_; ++q) sum[q] /= comp_count_[q];
-#pragma omp parallel for schedule(static) if (N >= kParallelMin)
-  for (long c = 0; c < N; ++c)
-    if (comp_[c] >= 0) v[c] -= sum[comp_[c]];
+#pragma omp parallel for schedule(static) if (M >= kParallelMin)
+  for (long q = 0; q < M; ++q) {
+    const long c = floating_cells_[q];
+    v[c] -= sum[comp_[c]];
+  }
 }
 
 void Poisson7::gauss_seidel_color(const double* b, double* x, int color) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
-  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const long plane = long(nx) * ny;
   // An odd periodic y or z axis makes rows 0 and n-1 hold neighbouring cells of one colour:
   // then sweep serially, so the result stays independent of the thread count.
-  const bool odd_wrap = (py && ny % 2) || (pz && nz % 2);
+  const bool odd_wrap = (periodic(1) && ny % 2) || (periodic(2) && nz % 2);
 #pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap && plane * nz >= kParallelMin)
   for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j) {
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color);
+}
+
+void Poisson7::gauss_seidel_pair(const double* b, double* x, int first) const {
+  const int ny = g_.ny, nz = g_.nz;
+  const long plane = long(g_.nx) * ny;
+  const bool odd_wrap = (periodic(1) && ny % 2) || (periodic(2) && nz % 2);
+  if (odd_wrap || periodic(2) || nz < 4) {  // plane 0 and nz-1 are neighbours: two plain sweeps
+    gauss_seidel_color(b, x, first);
+    gauss_seidel_color(b, x, 1 - first);
+    return;
+  }
+  const int second = 1 - first;
+  auto plane_sweep = [&](int k, int color) {
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color);
+  };
+#pragma omp parallel if (plane * nz >= kParallelMin)
+  {
+    const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
+    const int ka = int(long(nz) * tid / nth), kb = int(long(nz) * (tid + 1) / nth);
+    for (int k = ka; k < kb; ++k) {
+      plane_sweep(k, first);
+      if (k - 1 > ka && k - 1 < kb - 1) plane_sweep(k - 1, second);
+    }
+#pragma omp barrier
+    if (kb > ka) plane_sweep(ka, second);
+    if (kb - 1 > ka) plane_sweep(kb - 1, second);
+  }
+}
+
+// One colour of row (j, k): x_c = (b_c + sum_nb w_f x_nb) / D_c.
+void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
+  const long plane = long(nx) * ny;
+    {
       const long c0 = long(nx) * (j + long(ny) * k);
       double* xr = x + c0;
       const double* br = b + c0;
@@ -198,7 +240,8 @@ void Poisson7::gauss_seidel_color(const double* b, double* x, int color) const {
     }
 }
 
-void Poisson7::apply(const double* x, double* y) const {
+template <bool kResidual>
+void Poisson7::apply_rows(const double* x, double* y, const double* b) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const long plane = long(nx) * ny;
@@ -227,14 +270,16 @@ void Poisson7::apply(const double* x, double* y) const {
         yr[0] -= wxr[0] * xr[nx - 1];
         yr[nx - 1] -= wxr[0] * xr[0];
       }
+      if constexpr (kResidual) {
+        const double* br = b + c0;
+        for (int i = 0; i < nx; ++i) yr[i] = br[i] - yr[i];
+      }
     }
 }
 
-void Poisson7::residual(const double* b, const double* x, double* r) const {
-  apply(x, r);
-  const long N = n();
-#pragma omp parallel for schedule(static) if (N >= kParallelMin)
-  for (long c = 0; c < N; ++c) r[c] = b[c] - r[c];
-}
+void Poisson7::apply(const double* x, double* y) const { apply_rows<false>(x, y, nullptr); }
+
+// r = b - A x, row by row right after A x (the same arithmetic as apply, then b - y).
+void Poisson7::residual(const double* b, const double* x, double* r) const { apply_rows<true>(x, r, b); }
 
 }  // namespace cgdem::pressure

@@ -34,6 +34,12 @@ class Poisson7 {
   // One Gauss-Seidel half-sweep over the cells with (i+j+k) % 2 == color:
   //   x_c = (b_c + sum_nb w_f x_nb) / D_c   (cells with D_c = 0 are left alone).
   void gauss_seidel_color(const double* b, double* x, int color) const;
+  // The two half-sweeps `first` then 1 - first in one pass over memory: the second colour of
+  // plane k-1 is updated right after the first colour of plane k (its last neighbour to
+  // change). Bitwise the same as gauss_seidel_color(first) then (1 - first), for any number of
+  // threads (each thread's chunk of planes defers the second colour of its two end planes until
+  // all threads have done their first colour).
+  void gauss_seidel_pair(const double* b, double* x, int first) const;
   // Subtract, on every floating component, its mean (deterministic serial sums).
   void project_floating(double* v) const;
 
@@ -59,10 +65,14 @@ class Poisson7 {
 
  private:
   void label_components();
+  template <bool kResidual>
+  void apply_rows(const double* x, double* y, const double* b) const;
+  void gs_row(const double* b, double* x, int j, int k, int color) const;
 
   GridSpec g_;
   std::vector<double> ax_, ay_, az_, wx_, wy_, wz_, diag_, open_;
   std::vector<int> comp_;
+  std::vector<long> floating_cells_;  // cells of floating components, ascending
   std::vector<double> comp_count_;
   int n_floating_ = 0;
 };

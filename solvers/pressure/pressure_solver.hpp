@@ -58,6 +58,8 @@ class PressureSolver {
                                 const std::vector<double>& az) = 0;
   // phi holds the initial guess on entry and the solution on exit.
   virtual SolveStats solve(const std::vector<double>& rhs, std::vector<double>& phi) = 0;
+  // Changes SolverOptions::rel_tol for the following solves (> 0).
+  virtual void set_rel_tol(double rel_tol) = 0;
 };
 
 // Throws cgdem::Error for an unknown method or inconsistent grid.

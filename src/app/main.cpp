@@ -18,6 +18,12 @@
 #include "core/error.hpp"
 #include "core/revision.hpp"
 
+// OpenBLAS (behind CHOLMOD, used on the coarsest multigrid level) starts its own pthreads,
+// which keep spinning after each call and take the cores from the OpenMP threads of the DEM
+// and the air: on 2 cores a coupled step was up to 100x slower with 2 threads than with 1.
+// The BLAS work here is small, so it runs on the calling thread. Weak: absent without OpenBLAS.
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
 namespace {
 
 int run_command(const std::string& file, const std::vector<std::string>& sets, const std::string& output,
@@ -85,8 +91,10 @@ int main(int argc, char** argv) {
   bfluid->add_option("--method", f_args.method, "pressure solver (pcg-mg2, pcg-mg, pcg-fft, cg, cholmod)");
   bfluid->add_option("--tolerance", f_args.tolerance, "relative residual of the pressure solves")
       ->check(CLI::PositiveNumber);
+  bfluid->add_option("--stage-tolerance", f_args.stage_tolerance, "relative residual of the Heun stage-1 solve");
 
   CLI11_PARSE(app, argc, argv);
+  if (openblas_set_num_threads) openblas_set_num_threads(1);
   try {
     if (*run) {
       if (threads > 0) omp_set_num_threads(threads);

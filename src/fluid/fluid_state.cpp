@@ -21,6 +21,8 @@ void FluidParams::validate() const {
   if (!(rho > 0)) throw Error(fmt::format("fluid: rho must be > 0 (got {} kg/m^3)", rho));
   if (!(mu >= 0)) throw Error(fmt::format("fluid: mu must be >= 0 (got {} Pa s)", mu));
   if (time_order != 1 && time_order != 2) throw Error(fmt::format("fluid: time_order must be 1 or 2 (got {})", time_order));
+  if (!(stage_rel_tol >= 0 && stage_rel_tol < 1))
+    throw Error(fmt::format("fluid: stage_rel_tol must be in [0, 1) (got {})", stage_rel_tol));
   if (ibm_samples < 1) throw Error("fluid: ibm_samples must be >= 1");
   if (!(cfl > 0 && cfl <= 1)) throw Error(fmt::format("fluid: cfl must be in (0, 1] (got {})", cfl));
   if (!(visc_safety > 0 && visc_safety <= 1))

@@ -40,6 +40,10 @@ struct FluidParams {
   Vec3 gravity{};        // [m/s^2]
   FluidBoundary bc{};    // six sides (boundary.hpp)
   pressure::SolverOptions pressure{};
+  // Relative tolerance of the stage-1 (predictor) solve of Heun's method (0: pressure.rel_tol).
+  // u^(1) enters the step only through R(u^(1)) dt/2, and the final solve (pressure.rel_tol)
+  // projects the end-of-step velocity, so this loosens no constraint (docs/air_discretization.md).
+  double stage_rel_tol = 1e-4;
   Advection advection = Advection::VanLeer;
   int time_order = 2;    // 1: forward Euler, 2: Heun (two projected stages)
   int ibm_samples = 4;   // n of the n^3 sub-samples for alpha
@@ -58,6 +62,7 @@ struct Sources {
 
 struct StepStats {
   int pressure_iterations = 0;   // summed over the stages of the step
+  int stage_iterations = 0;      // of them, in the stage-1 solve (time_order 2)
   double pressure_residual = 0;  // relative residual of the last solve
   bool pressure_converged = true;
   double max_divergence = 0;     // max_c |d(eps)/dt + div(eps u)| [1/s] after the step
