@@ -126,24 +126,38 @@ void DemSolver::compute_forces() {
                           nl.partner.data(),          nl.hist.data(),
                           nl.f_partner.data(), nl.t_partner.data()};
   const int nblocks = (n + kBlock - 1) / kBlock;
+  // Plain pointers for the scalar loops (vector members would be reloaded after each store).
+  const int *offset = nl.offset.data(), *wall_offset = nl.wall_offset.data();
+  const int *rev_offset = nl.rev_offset.data(), *rev_entry = nl.rev_entry.data();
+  const Vec3 *f_partner = nl.f_partner.data(), *t_partner = nl.t_partner.data();
+  const Vec3 *x = p.x.data(), *v = p.v.data(), *omega = p.omega.data(), *f_ext = p.f_ext.data();
+  const double *radius = p.radius.data(), *inv_mass = p.inv_mass.data();
+  Vec3 *force = p.force.data(), *torque_out = p.torque.data();
+  double *e_damping = p.e_damping.data(), *e_friction = p.e_friction.data(), *w_walls = p.w_walls.data();
   const bool periodic = nl.periodic.any();
 
 #pragma omp parallel if (n >= 512)
   {
-    std::vector<int> owner;
+    std::vector<int> owner, starts;
     std::vector<double> shift[3], zero;
     std::vector<double> damp, fric;
 #pragma omp for schedule(static)
     for (int b = 0; b < nblocks; ++b) {
       const int i0 = b * kBlock, i1 = std::min(n, i0 + kBlock);
-      const int e0 = nl.offset[i0], e1 = nl.offset[i1];
-      owner.resize(e1 - e0);
-      for (auto& s : shift) s.resize(periodic ? e1 - e0 : 0);
-      if (zero.size() < static_cast<size_t>(e1 - e0)) zero.assign(e1 - e0, 0.0);
-      damp.resize(e1 - e0);
-      fric.resize(e1 - e0);
-      for (int i = i0; i < i1; ++i)
-        for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) owner[e - e0] = i;
+      const int e0 = offset[i0], e1 = offset[i1], ne = e1 - e0;
+      if (starts.size() < static_cast<size_t>(ne) + 1) {  // grown, never shrunk
+        starts.resize(ne + 1);
+        owner.resize(ne);
+        zero.resize(ne);  // stays 0
+        damp.resize(ne);
+        fric.resize(ne);
+        if (periodic)
+          for (auto& s : shift) s.resize(ne);
+      }
+      // Owner of each entry, without branches: count the owners that start at each entry.
+      std::fill(starts.begin(), starts.begin() + ne + 1, 0);
+      for (int i = i0 + 1; i < i1; ++i) ++starts[offset[i] - e0];
+      for (int e = 0, i = i0; e < ne; ++e) owner[e] = i += starts[e];
       const double* shift_k[3] = {zero.data(), zero.data(), zero.data()};
       if (periodic) {
         for (int e = e0; e < e1; ++e)
@@ -157,22 +171,22 @@ void DemSolver::compute_forces() {
                             p.species.data());
 
       for (int i = i0; i < i1; ++i) {
-        const Vec3 xi = p.x[i], vi = p.v[i], wi = p.omega[i];
-        const double ri = p.radius[i];
-        const int si = p.species[i];
-        Vec3 f = (1.0 / p.inv_mass[i]) * g + p.f_ext[i];
+        const double ri = radius[i];
+        Vec3 f = (1.0 / inv_mass[i]) * g + f_ext[i];
         Vec3 torque{};
         double e_damp = 0, e_fric = 0, w_wall = 0;
 
         // The owner's shares, in entry order (zero for pairs out of contact).
-        for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
-          f -= nl.f_partner[e];
-          torque -= ri * nl.t_partner[e];  // (-r_i n) x F_t
+        for (int e = offset[i]; e < offset[i + 1]; ++e) {
+          f -= f_partner[e];
+          torque -= ri * t_partner[e];  // (-r_i n) x F_t
           e_damp += damp[e - e0];
           e_fric += fric[e - e0];
         }
 
-        for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e) {
+        const Vec3 xi = x[i], vi = v[i], wi = omega[i];
+        const int si = p.species[i];
+        for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e) {
           const int part = nl.wall_part[e];
           Vec3 grad;
           const double s = frame.part_distance(part, xi, grad);  // eq. (15): phi, grad phi
@@ -200,11 +214,11 @@ void DemSolver::compute_forces() {
           w_wall += dot(fc, u_wall) * dt;  // power of the contact force at the wall's velocity
         }
 
-        p.force[i] = f;
-        p.torque[i] = torque;
-        p.e_damping[i] += e_damp;
-        p.e_friction[i] += e_fric;
-        p.w_walls[i] += w_wall;
+        force[i] = f;
+        torque_out[i] = torque;
+        e_damping[i] += e_damp;
+        e_friction[i] += e_fric;
+        w_walls[i] += w_wall;
       }
     }
 
@@ -212,13 +226,13 @@ void DemSolver::compute_forces() {
 #pragma omp for schedule(static)
     for (int j = 0; j < n; ++j) {
       Vec3 f{}, t{};
-      for (int k = nl.rev_offset[j]; k < nl.rev_offset[j + 1]; ++k) {
-        const int e = nl.rev_entry[k];
-        f += nl.f_partner[e];
-        t += nl.t_partner[e];
+      for (int k = rev_offset[j]; k < rev_offset[j + 1]; ++k) {
+        const int e = rev_entry[k];
+        f += f_partner[e];
+        t += t_partner[e];
       }
-      p.force[j] += f;
-      p.torque[j] -= p.radius[j] * t;
+      force[j] += f;
+      torque_out[j] -= radius[j] * t;
     }
   }
 }
