@@ -11,7 +11,7 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   if (!(params_.dt_fluid_max > 0)) throw Error("coupled solver: dt_fluid_max must be > 0");
   dem_.enable_air_forces(true);
   air_.t = dem_.time();
-  use_walls_now();
+  walls_at(air_.t);
   void_stats_ = ex_.void_fraction(dem_.particles(), air_.eps);
   air_.eps_old = air_.eps;
   t_gather_ = timers_.id("air -> parcels");
@@ -19,16 +19,10 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   t_deposit_ = timers_.id("parcels -> air");
 }
 
-void CoupledSolver::use_walls_now() {
-  // The air's own fractions are those of its last step's end, i.e. of now; before the
-  // first air step (a new run or a restart) they are computed here for the current time.
-  if (fluid_.ibm().valid) {
-    ex_.set_walls(&fluid_.ibm());
-    return;
-  }
-  walls_start_ = {};
-  fluid::update_ibm(air_.grid, dem_.scene().at(air_.t), fluid_.params().ibm_samples, walls_start_);
-  ex_.set_walls(&walls_start_);
+void CoupledSolver::walls_at(double t) {
+  // Cached by body position: only the band around the moving parts is re-evaluated.
+  fluid::update_ibm(air_.grid, dem_.scene().at(t), fluid_.params().ibm_samples, walls_);
+  ex_.set_walls(&walls_);
 }
 
 int CoupledSolver::substeps() const {
@@ -55,10 +49,11 @@ CoupledStepStats CoupledSolver::step() {
   const double t_end = air_.t + st.dt_fluid;
   Particles& p = dem_.particles();
 
-  use_walls_now();                                                    // alpha at t^n
+  walls_at(air_.t);                                                   // alpha at t^n
   { auto t = timers_.scope(t_gather_);
     ex_.air_to_parcels(air_, p); }                                     // 1. u_f, c_p, f_ext at t^n
   advance_particles(st.substeps);                                     // 2. DEM substeps
+  walls_at(t_end);                                                    //    alpha at t^{n+1}
   { auto t = timers_.scope(t_map_);
     void_stats_ = ex_.void_fraction(p, air_.eps); }                   // 3. eps^{n+1}
   { auto t = timers_.scope(t_deposit_);

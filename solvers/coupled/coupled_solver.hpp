@@ -7,7 +7,8 @@
 //   2. DEM substeps     N velocity-Verlet steps with contacts, walls, gravity, f_ext and the
 //                       drag c_p (u_f - v) integrated implicitly in each kick; the drag
 //                       impulse J_p each parcel receives is accumulated
-//   3. void fraction    eps^{n+1} from the parcel positions at t^{n+1} (kernel mapping)
+//   3. void fraction    eps^{n+1} from the parcel positions at t^{n+1} (kernel mapping,
+//                       masked by the wall fractions at t^{n+1}, those the air step uses)
 //   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w (c_p u_f - J_p/dt_f) / V_cell (eq. 14)
 //   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
 //                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
@@ -65,8 +66,9 @@ class CoupledSolver {
   CoupledParams params_;
   fluid::Sources src_;
   coupling::VoidStats void_stats_;
-  void use_walls_now();
-  fluid::IbmFractions walls_start_;  // wall fractions before the air's first step
+  // Wall fractions for the exchange's masks at time t (the air solver keeps its own copy).
+  void walls_at(double t);
+  fluid::IbmFractions walls_;
   PhaseTimers timers_;
   int t_gather_, t_map_, t_deposit_;
 };
