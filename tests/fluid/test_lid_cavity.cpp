@@ -2,7 +2,10 @@
 // 2-D in a one-cell periodic slab. Steady centreline velocities against Ghia, Ghia & Shin
 // (1982) (references.md). Max deviation over the tabulated points, in units of the lid speed:
 //   CI:   Re = 100 on 32^2: < 2 % as well (measured 0.67 %; the coarse grid already meets it)
-//   full (CGDEM_FULL_VALIDATION=1): Re = 100 and Re = 400 on 128^2: < 2 %.
+//         Re = 400 on 32^2: < 5 % (measured 3.49 %; the thinner boundary layers need a finer
+//         grid: 64^2 gives 0.67 % but costs ~20 s of CPU, too slow for CI)
+//   full (CGDEM_FULL_VALIDATION=1): Re = 100 and Re = 400 on 128^2: < 2 % (measured values
+//         in validation/air/lid_cavity/README.md).
 // The centreline profiles are interpolated to Ghia's points with 3-point Lagrange polynomials.
 #include <gtest/gtest.h>
 
@@ -14,6 +17,9 @@
 
 namespace cgdem::fluid::test {
 namespace {
+
+constexpr int kRe400CiGrid = 32;
+constexpr double kRe400CiTol = 0.05;
 
 struct Ref {
   double pos, re100, re400;
@@ -93,13 +99,27 @@ TEST(LidCavity, Re100CoarseCI) {
   EXPECT_LT(dev, 0.02);
 }
 
-TEST(LidCavity, Full128) {
-  if (!full_validation()) GTEST_SKIP() << "set CGDEM_FULL_VALIDATION=1 for the 128x128 Re=100/400 runs";
-  for (double re : {100.0, 400.0}) {
-    double dev = cavity_deviation(128, re);
-    std::printf("[ error ] Re=%g 128x128: max deviation from Ghia = %.4f (tol 0.02)\n", re, dev);
-    EXPECT_LT(dev, 0.02);
-  }
+// Re = 400 needs a finer grid than Re = 100 for the same accuracy; the CI variant uses 32^2
+// with the looser tolerance stated in the file header (measured value there).
+TEST(LidCavity, Re400CoarseCI) {
+  double dev = cavity_deviation(kRe400CiGrid, 400);
+  std::printf("[ error ] Re=400 %dx%d: max |u - u_Ghia| on the centrelines = %.4f (tol %.2f)\n", kRe400CiGrid,
+              kRe400CiGrid, dev, kRe400CiTol);
+  EXPECT_LT(dev, kRe400CiTol);
+}
+
+TEST(LidCavity, Full128Re100) {
+  if (!full_validation()) GTEST_SKIP() << "set CGDEM_FULL_VALIDATION=1 for the 128x128 runs";
+  double dev = cavity_deviation(128, 100);
+  std::printf("[ error ] Re=100 128x128: max deviation from Ghia = %.4f (tol 0.02)\n", dev);
+  EXPECT_LT(dev, 0.02);
+}
+
+TEST(LidCavity, Full128Re400) {
+  if (!full_validation()) GTEST_SKIP() << "set CGDEM_FULL_VALIDATION=1 for the 128x128 runs";
+  double dev = cavity_deviation(128, 400);
+  std::printf("[ error ] Re=400 128x128: max deviation from Ghia = %.4f (tol 0.02)\n", dev);
+  EXPECT_LT(dev, 0.02);
 }
 
 }  // namespace
