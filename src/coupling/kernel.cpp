@@ -38,25 +38,6 @@ Stencil tsc_stencil(const Lattice& L, const Vec3& x) {
   return s;
 }
 
-void deposit(const Stencil& s, double value, fluid::Field& f) {
-  for (int c = 0; c < 3; ++c)
-    for (int b = 0; b < 3; ++b) {
-      const double wbc = value * s.w[1][b] * s.w[2][c];
-      for (int a = 0; a < 3; ++a) f(s.idx[0][a], s.idx[1][b], s.idx[2][c]) += wbc * s.w[0][a];
-    }
-}
-
-double interpolate(const Stencil& s, const fluid::Field& f) {
-  double sum = 0;
-  for (int c = 0; c < 3; ++c)
-    for (int b = 0; b < 3; ++b) {
-      double row = 0;
-      for (int a = 0; a < 3; ++a) row += s.w[0][a] * f(s.idx[0][a], s.idx[1][b], s.idx[2][c]);
-      sum += row * s.w[1][b] * s.w[2][c];
-    }
-  return sum;
-}
-
 Weights flatten(const Stencil& s, const fluid::Field& layout) {
   Weights f;
   int n = 0;

@@ -56,13 +56,11 @@ Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& 
 // prescribed faces on the domain's wall sides.
 Weights masked(const Stencil& s, const fluid::Field& alpha, const fluid::Field& blocked, const fluid::Field& layout);
 
+// f(node) += value * weight(node) for the 27 nodes.
 void deposit(const Weights& s, double value, fluid::Field& f);
+// sum over the 27 nodes of weight(node) f(node).
 double interpolate(const Weights& s, const fluid::Field& f);
 
-// f(node) += value * weight(node) for the 27 nodes.
-void deposit(const Stencil& s, double value, fluid::Field& f);
-// sum over the 27 nodes of weight(node) f(node).
-double interpolate(const Stencil& s, const fluid::Field& f);
 // A d-face field read with the weights a cell-centred deposit gives the faces when face
 // values are the mean of their two cells (face i between cells i-1 and i):
 //   sum_cells w_c (f(face c) + f(face c+1)) / 2.
