@@ -41,8 +41,10 @@ list(REMOVE_ITEM CGDEM_APP_SRCS ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
 add_library(cgdem_app STATIC ${CGDEM_APP_SRCS})
 target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling)
 target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
+# The analysis on top of runs (coarse-grain scaling, spectra, convergence studies).
+cgdem_module(cgdem_scaling DIRS scaling DEPS cgdem_app PkgConfig::FFTW3 Eigen3::Eigen)
 add_executable(cgdem ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
-target_link_libraries(cgdem PRIVATE cgdem_app)
+target_link_libraries(cgdem PRIVATE cgdem_app cgdem_scaling)
 target_compile_options(cgdem PRIVATE -Wall -Wextra)
 
 if(CGDEM_BUILD_TESTS AND GTest_FOUND)
@@ -67,10 +69,16 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(fluid cgdem_fluid)
   cgdem_tests(coupling cgdem_coupling)
   cgdem_tests(app cgdem_app)
+  cgdem_tests(scaling cgdem_scaling)
   # End-to-end checks of the command line (config errors, demo smoke run).
   if(EXISTS ${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
     include(${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
   endif()
+  # One file per command's end-to-end checks (tests/cli/<command>.cli.cmake).
+  file(GLOB cli_extra CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/cli/*.cli.cmake)
+  foreach(f ${cli_extra})
+    include(${f})
+  endforeach()
 endif()
 
 if(CGDEM_BUILD_BENCH AND EXISTS ${PROJECT_SOURCE_DIR}/bench/CMakeLists.txt)

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "app/checkpoint.hpp"
+#include "app/energy_csv.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -70,11 +71,6 @@ long count_inside_walls(const DemSolver& dem) {
   for (const auto& x : dem.particles().x)
     if (frame.phi(x) < 0) ++n;
   return n;
-}
-
-std::string energy_header() {
-  return "t,E_kin_trans,E_kin_rot,E_pot,E_elastic,E_diss_damping,E_diss_friction,W_walls,W_air,E_balance,"
-         "px,py,pz,mass,particles,removed,inside_walls";
 }
 
 // Cell-centred air fields for a snapshot: eps, p, wall fraction alpha, velocity.
@@ -178,7 +174,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     std::fprintf(f, "# cgdem %s, case %s\n%s\n", kGitRevision, info.case_file.c_str(), header.c_str());
     return f;
   };
-  std::FILE* energy = open_csv("energy.csv", energy_header());
+  std::FILE* energy = open_csv("energy.csv", energy_csv_header());
   std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
   const std::string last_good = (out / "last_good.h5").string();
   const std::string checkpoint = (out / "checkpoint.bin").string();
@@ -206,10 +202,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     e.work_fluid = dem->fluid_work();
     const long inside = count_inside_walls(*dem);
     account_parcels(inside);
-    std::fprintf(energy, "%.9g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%zu,%ld,%ld\n",
-                 dem->time(), e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic,
-                 e.dissipated_damping, e.dissipated_friction, e.work_walls, e.work_fluid, e.balance(), e.momentum.x,
-                 e.momentum.y, e.momentum.z, e.mass, dem->particles().size(), dem->removed(), inside);
+    std::fprintf(energy, "%s\n", energy_csv_row(*dem, e, inside).c_str());
     std::fflush(energy);
     if (diag_csv) {
       std::fprintf(diag_csv, "%s\n",
