@@ -3,20 +3,21 @@
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
+//   cgdem spectrum | converge | scale ...   (the analysis commands, scaling/*_command.hpp)
 #include <fmt/format.h>
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "app/dem_case.hpp"
-#include "app/air_case.hpp"
-#include "app/die_diagnostics.hpp"
-#include "app/run_case.hpp"
+#include "app/run_command.hpp"
 #include "bench/bench.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "scaling/converge_command.hpp"
+#include "scaling/scale_command.hpp"
+#include "scaling/spectrum_command.hpp"
 
 // OpenBLAS (behind CHOLMOD, used on the coarsest multigrid level) starts its own pthreads,
 // which keep spinning after each call and take the cores from the OpenMP threads of the DEM
@@ -25,19 +26,6 @@
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
 namespace {
-
-int run_command(const std::string& file, const std::vector<std::string>& sets, const std::string& output,
-                const std::string& restart) {
-  using namespace cgdem;
-  Config cfg = Config::from_file(file);
-  for (const auto& s : sets) cfg.apply_override(s);
-  if (!output.empty()) cfg.apply_override("output.dir=\"" + output + "\"");
-  app::DemCase c = app::read_dem_case(cfg);
-  app::AirCase air = app::read_air_case(cfg, c.dem);
-  app::DiagnosticsSpec diag = app::read_diagnostics(cfg);
-  cfg.check_unused();
-  return app::run_case(c, air, diag, {file, cfg.resolved_toml(), restart});
-}
 
 template <class Args>
 int parse_grid(const std::string& g, Args& a) {
@@ -93,12 +81,16 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bfluid->add_option("--stage-tolerance", f_args.stage_tolerance, "relative residual of the Heun stage-1 solve");
 
+  cgdem::scaling::SpectrumCommand spectrum(app);
+  cgdem::scaling::ConvergeCommand converge(app);
+  cgdem::scaling::ScaleCommand scale(app);
+
   CLI11_PARSE(app, argc, argv);
   if (openblas_set_num_threads) openblas_set_num_threads(1);
   try {
     if (*run) {
       if (threads > 0) omp_set_num_threads(threads);
-      return run_command(case_file, sets, output, restart);
+      return cgdem::app::run_case_file({case_file, sets, output, restart});
     }
     if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
     if (*bpress) {
@@ -110,6 +102,9 @@ int main(int argc, char** argv) {
       parse_grid(f_grid, f_args);
       return cgdem::bench::run_fluid_bench(f_args);
     }
+    if (spectrum.selected()) return spectrum.run();
+    if (converge.selected()) return converge.run();
+    if (scale.selected()) return scale.run();
   } catch (const cgdem::Error& e) {
     std::fprintf(stderr, "cgdem: error: %s\n", e.what());
     return 2;

@@ -1,0 +1,20 @@
+// `cgdem run`: read a case file, apply the command line's overrides, validate every key,
+// and run it. Used by main.cpp and in-process by the analysis commands (converge, scale).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace cgdem::app {
+
+struct RunRequest {
+  std::string case_file;
+  std::vector<std::string> sets;  // key.path=value overrides, applied in order
+  std::string output;             // overrides output.dir when not empty
+  std::string restart;            // checkpoint to continue from, or empty
+};
+
+// Returns the process exit status (0 on success). Throws cgdem::Error on bad input and
+// RunError when the run has to stop.
+int run_case_file(const RunRequest& r);
+
+}  // namespace cgdem::app
