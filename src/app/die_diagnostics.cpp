@@ -20,6 +20,7 @@ DiagnosticsSpec read_diagnostics(Config& cfg) {
   d.enabled = true;
   d.die = geometry::read_die_filling(root.section("walls").section("die_filling"));
   Section s(&cfg, "diagnostics");
+  d.interval = s.number_or("interval", d.interval, Range::positive());
   d.rate_window = s.number_or("rate_window", d.rate_window, Range::positive());
   d.impact_band = s.number_or("impact_band", 0.0, Range::non_negative());
   d.impact_window = s.number_or("impact_window", d.impact_window, Range::positive());
@@ -122,11 +123,21 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
     const auto& g = air->grid;
     // Reference: the still-air pressure, p_open at the top open side, hydrostatic below.
     const Vec3 top = g.origin + g.dx * Vec3{0.5 * g.nx, 0.5 * g.ny, double(g.nz)};
+    // Only the index range the box can touch (one cell of margin against rounding); the
+    // exact containment test below decides.
+    auto range = [&](double lo, double hi, double o, int n, int& a, int& b) {
+      a = std::max(0, static_cast<int>(std::floor((lo - o) / g.dx - 0.5)) - 1);
+      b = std::min(n - 1, static_cast<int>(std::ceil((hi - o) / g.dx - 0.5)) + 1);
+    };
+    int i0, i1, j0, j1, k0, k1;
+    range(c.lo.x, c.hi.x, g.origin.x, g.nx, i0, i1);
+    range(c.lo.y, c.hi.y, g.origin.y, g.ny, j0, j1);
+    range(c.lo.z, c.hi.z, g.origin.z, g.nz, k0, k1);
     double sum = 0;
     int n = 0;
-    for (int k = 0; k < g.nz; ++k)
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
           const Vec3 x = g.cell_centre(i, j, k);
           if (x.x < c.lo.x || x.x > c.hi.x || x.y < c.lo.y || x.y > c.hi.y || x.z < c.lo.z || x.z > c.hi.z) continue;
           sum += air->p(i, j, k) - fp->bc[5].pressure - fp->rho * dot(fp->gravity, x - top);

@@ -36,6 +36,7 @@ struct PressureCell {
 struct DiagnosticsSpec {
   bool enabled = false;
   geometry::DieFillingParams die;
+  double interval = 1e-4;       // [s] between rows of diagnostics.csv
   double rate_window = 5e-3;    // [s]
   double impact_band = 0;       // [m] above the floor (0: a quarter of the largest parcel diameter)
   double impact_window = 5e-3;  // [s]
@@ -43,7 +44,7 @@ struct DiagnosticsSpec {
 };
 
 // [diagnostics] (enabled by default when [walls.die_filling] exists):
-//   rate_window, impact_band, impact_window, [[diagnostics.pressure_cell]] name/min/max
+//   interval, rate_window, impact_band, impact_window, [[diagnostics.pressure_cell]] name/min/max
 // (default cells A, B, C: see die_diagnostics.cpp).
 DiagnosticsSpec read_diagnostics(Config& cfg);
 

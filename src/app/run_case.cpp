@@ -12,6 +12,7 @@
 
 #include "app/checkpoint.hpp"
 #include "app/energy_csv.hpp"
+#include "app/run_metrics.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -204,12 +205,13 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     account_parcels(inside);
     std::fprintf(energy, "%s\n", energy_csv_row(*dem, e, inside).c_str());
     std::fflush(energy);
-    if (diag_csv) {
-      std::fprintf(diag_csv, "%s\n",
-                   diag.csv_line(diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr,
-                                          with_air ? &air_case.fluid : nullptr)).c_str());
-      std::fflush(diag_csv);
-    }
+  };
+  auto write_diagnostics = [&]() {
+    if (!diag_csv) return;
+    std::fprintf(diag_csv, "%s\n",
+                 diag.csv_line(diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr,
+                                        with_air ? &air_case.fluid : nullptr)).c_str());
+    std::fflush(diag_csv);
   };
   auto check_health = [&]() {
     check_particles(*dem, c.output.max_speed);
@@ -230,6 +232,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   if (!restart) {
     diag.observe(dem->time(), dem->particles());
     write_energy();
+    write_diagnostics();
     write_snapshot();
     write_checkpoint_now();
   }
@@ -241,6 +244,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   };
   double next_energy = next_after(c.output.energy_interval), next_snap = next_after(c.output.snapshot_interval);
   double next_checkpoint = next_after(c.output.checkpoint_interval);
+  double next_diag = next_after(diag_spec.interval);
+  // The settled state: a run that starts before the shoe moves (t < 0) keeps a checkpoint
+  // of t = 0 as settled.bin, so the filling can be rerun without settling again.
+  bool settled_pending = dem->time() < -tiny;
   const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));  // vacuum: diagnostics every 0.1 ms
   Stopwatch clock;
   double last_progress = 0;
@@ -270,6 +277,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       write_energy();
       while (next_energy <= t + tiny) next_energy += c.output.energy_interval;
     }
+    if (diag_csv && (t >= next_diag - tiny || last)) {
+      write_diagnostics();
+      while (next_diag <= t + tiny) next_diag += diag_spec.interval;
+    }
     if (snap) {
       write_snapshot();
       while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
@@ -278,6 +289,14 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       check_health();
       write_checkpoint_now();
       while (next_checkpoint <= t + tiny) next_checkpoint += c.output.checkpoint_interval;
+    }
+    if (settled_pending && t >= -tiny) {
+      check_health();
+      write_checkpoint((out / "settled.bin").string(), info.resolved_config, *dem, with_air ? &air : nullptr, diag,
+                       counters);
+      fmt::print("{}settled state at t = {:.6g} s saved: {} (rerun the filling with --restart)\n", tty ? "\n" : "", t,
+                 (out / "settled.bin").string());
+      settled_pending = false;
     }
     const double wall = clock.seconds();
     if ((tty && wall - last_progress > 0.5) || (!tty && wall - last_progress > c.output.progress_interval) || last) {
@@ -300,6 +319,8 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   }
 
   const double wall = clock.seconds();
+  io::write_metrics((out / "metrics.csv").string(),
+                    run_metrics(c.output.dir, *dem, diag_spec.enabled, diag.front_impact()));
   EnergyBudget e = dem->energy();
   fmt::print("\n{}", dem->timers().table("per-phase time (DEM)"));
   if (with_air) {
@@ -324,8 +345,8 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       fmt::print("the powder has not reached the die floor yet\n");
   }
   fmt::print("state digest {:016x} at t = {:.9g} s\n", state_digest(*dem, with_air ? &air : nullptr), dem->time());
-  fmt::print("outputs in {}: energy.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, checkpoint.bin, "
-             "config.resolved.toml\n",
+  fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
+             "checkpoint.bin, config.resolved.toml\n",
              c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "",
              with_air ? ", air.xdmf (+ air_*.h5)" : "");
   return 0;

@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "app/die_diagnostics.hpp"
+#include "app/run_metrics.hpp"
 #include "fluid/fluid_state.hpp"
 
 using namespace cgdem;
@@ -84,4 +87,55 @@ TEST(DieDiagnostics, GaugePressureOfStillAirIsZero) {
   auto r = d.row(0, p, &air, &fp);
   std::printf("[ diagnostics ] gauge pressure in A: %.3e Pa (want 2.5: hydrostatic removed)\n", r.pressure[0]);
   EXPECT_NEAR(r.pressure[0], 2.5, 1e-9);
+}
+
+// The cell average takes exactly the cells whose centres lie in the box: with p = i + 1000 j
+// + 1e6 k (no gravity) the mean identifies the index set. Box A spans x 40.0..41.2 mm,
+// y 20.0..21.2 mm, z 8.0..9.2 mm: centres (i + 0.5) 0.6 mm inside: (39.9 mm, i = 66, is
+// outside, 40.5 and 41.1 inside: i = 67, 68), j = 33, 34, k = 13, 14 -> mean 67.5 + 33500 + 13.5e6.
+TEST(DieDiagnostics, PressureCellAveragesTheCellsWhoseCentresLieInTheBox) {
+  const Species sp = powder();
+  DieDiagnostics d(spec(), {sp.mass()}, {sp.diameter()});
+  fluid::MacGrid g;
+  g.nx = 140, g.ny = 70, g.nz = 50, g.dx = 0.6e-3;
+  fluid::FluidState air = fluid::make_fluid_state(g);
+  fluid::FluidParams fp;
+  fp.rho = 1.0, fp.gravity = {0, 0, 0};
+  fp.bc[5].type = fluid::BcType::Open, fp.bc[5].pressure = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) air.p(i, j, k) = i + 1000.0 * j + 1e6 * k;
+  Particles p;
+  const double got = d.row(0, p, &air, &fp).pressure[0], want = 67.5 + 33500 + 13.5e6;
+  std::printf("[ diagnostics ] index mean in A: %.6f (want %.6f)\n", got, want);
+  EXPECT_NEAR(got, want, 1e-6);
+}
+
+// metrics.csv of a die-filling run from its diagnostics.csv: peaks over t >= 0 only (the
+// settling before the shoe moves is excluded), the final fill mass, NaN rows skipped.
+TEST(RunMetrics, DieMetricsTakePeaksOverTheShoeMotionOnly) {
+  const std::string path = std::string(CGDEM_BINARY_DIR) + "/tests/die_metrics_diagnostics.csv";
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream(path) << "# cgdem test\n"
+                         "t,mass_in_die,transfer_rate,impacts,p_A,p_B\n"
+                         "-0.01,0,9,0,50,nan\n"    // settling: larger values, ignored
+                         "0,0,0,0,1,nan\n"
+                         "0.1,1e-4,2e-3,5,3,2\n"
+                         "0.2,3e-4,1e-3,9,2,4\n";
+  const io::Metrics m = app::die_metrics(path, std::make_pair(0.09, 0.27));
+  auto v = [&](const char* n) { return io::metric(m, n, path); };
+  std::printf("[ metrics ] rate peak %.3g at %.3g s, p_A peak %.3g at %.3g s, p_B peak %.3g at %.3g s, fill %.3g kg\n",
+              v("transfer_rate_peak_kg_s"), v("transfer_rate_peak_time_s"), v("p_A_peak_Pa"), v("p_A_peak_time_s"),
+              v("p_B_peak_Pa"), v("p_B_peak_time_s"), v("fill_mass_kg"));
+  EXPECT_EQ(v("transfer_rate_peak_kg_s"), 2e-3);
+  EXPECT_EQ(v("transfer_rate_peak_time_s"), 0.1);
+  EXPECT_EQ(v("p_A_peak_Pa"), 3);
+  EXPECT_EQ(v("p_A_peak_time_s"), 0.1);
+  EXPECT_DOUBLE_EQ(v("p_A_mean_Pa"), 2);
+  EXPECT_EQ(v("p_B_peak_Pa"), 4);
+  EXPECT_EQ(v("p_B_peak_time_s"), 0.2);
+  EXPECT_DOUBLE_EQ(v("p_B_mean_Pa"), 3);
+  EXPECT_EQ(v("fill_mass_kg"), 3e-4);
+  EXPECT_EQ(v("front_time_s"), 0.09);
+  EXPECT_EQ(v("mean_impact_velocity_m_s"), 0.27);
 }
