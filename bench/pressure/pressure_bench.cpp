@@ -16,11 +16,16 @@
 // Prints per method the set-up time, seconds per solve to ||r|| <= 1e-8 ||b|| from phi = 0,
 // iterations and true residual (solve-s: mean over the repeats, best-s: the fastest one, as the
 // machine may be shared); last line "pressure-solve-s: <fastest preconditioned, mean>".
+// Methods: pcg-fft, pcg-fft-plain, pcg-mg, pcg-mg2 (mixed precision), pcg-mg-f64, pcg-mg2-f64
+// (double V-cycle), cg, cholmod; the environment variable CGDEM_BENCH_METHODS (comma-separated
+// list) restricts the set.
 #include <omp.h>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -132,7 +137,16 @@ int run_pressure_bench(const PressureBenchArgs& args) {
   std::printf("%-14s %10s %12s %12s %8s %12s %5s\n", "method", "setup-s", "solve-s", "best-s", "iters", "rel-resid",
               "conv");
   double best = std::numeric_limits<double>::infinity();
-  std::vector<std::string> methods = {"pcg-fft", "pcg-fft-plain", "pcg-mg", "pcg-mg2", "cg"};
+  std::vector<std::string> methods = {"pcg-fft", "pcg-fft-plain", "pcg-mg", "pcg-mg2", "pcg-mg-f64", "pcg-mg2-f64", "cg"};
+  if (const char* only = std::getenv("CGDEM_BENCH_METHODS")) {  // e.g. "pcg-mg2,pcg-mg2-f64"
+    methods.clear();
+    std::string list = only;
+    for (size_t a = 0; a <= list.size();) {
+      const size_t b = std::min(list.find(',', a), list.size());
+      if (b > a) methods.push_back(list.substr(a, b - a));
+      a = b + 1;
+    }
+  }
   if (args.with_cholmod) methods.push_back("cholmod");
   for (const auto& m : methods) {
     Row r;

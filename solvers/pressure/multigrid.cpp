@@ -46,7 +46,8 @@ bool can_coarsen(const GridSpec& g) {
 }
 }  // namespace
 
-MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu) : nu_(nu) {
+MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec)
+    : nu_(nu), precision_(prec) {
   grids_.push_back(fine);
   while (can_coarsen(grids_.back())) {
     GridSpec c = grids_.back();
@@ -57,9 +58,16 @@ MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu) :
   lv_.resize(grids_.size());
   for (size_t l = 0; l < grids_.size(); ++l) {
     const long n = grids_[l].cells();
-    lv_[l].b.resize(n);
-    lv_[l].x.resize(n);
-    lv_[l].r.resize(n);
+    const bool dbl = precision_ == Precision::Double, last = l + 1 == grids_.size();
+    if (dbl || last) {
+      lv_[l].b.resize(n);
+      lv_[l].x.resize(n);
+    }
+    if (dbl) lv_[l].r.resize(n);
+    if (!dbl) {
+      lv_[l].bf.resize(n);
+      lv_[l].xf.resize(n);
+    }
     if (l > 0) lv_[l].own = std::make_unique<Poisson7>(grids_[l]);
   }
 }
@@ -77,11 +85,47 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
   }
   coarse_.reset();
   coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
+  if (precision_ == Precision::Single) {
+    scale_ = stencil32_scale(op);
+    for (auto& L : lv_) L.s32.set(*L.op, scale_);
+  }
 }
 
 void MultigridPreconditioner::apply(const double* r, double* z) {
-  b0_ = r, x0_ = z;  // level 0 works in place on the caller's arrays
-  vcycle(0);
+  if (precision_ == Precision::Double) {
+    b0_ = r, x0_ = z;  // level 0 works in place on the caller's arrays
+    vcycle(0);
+    return;
+  }
+  const long n = grids_[0].cells();
+  float* bf = lv_[0].bf.data();
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (long c = 0; c < n; ++c) bf[c] = static_cast<float>(r[c]);
+  vcycle32(0);
+  const float* xf = lv_[0].xf.data();
+  const double s = scale_;
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (long c = 0; c < n; ++c) z[c] = s * static_cast<double>(xf[c]);
+}
+
+// The V-cycle of multigrid.hpp on the float operators (which are scale_ A).
+void MultigridPreconditioner::vcycle32(int l) {
+  Level& L = lv_[l];
+  if (l == levels() - 1) {  // coarsest: (s A)^{-1} b = A^{-1} b / s, in double
+    const long n = static_cast<long>(L.b.size());
+    for (long c = 0; c < n; ++c) L.b[c] = L.bf[c];
+    coarse_->solve(L.b.data(), L.x.data());
+    for (long c = 0; c < n; ++c) L.xf[c] = static_cast<float>(L.x[c] / scale_);
+    return;
+  }
+  const Stencil32& S = L.s32;
+  float *b = L.bf.data(), *x = L.xf.data();
+  for (int s = 0; s < nu_; ++s) S.gs_pair(b, x, 0, s == 0);  // the first pair starts from x = 0
+  Level& C = lv_[l + 1];
+  S.restrict_residual(b, x, grids_[l + 1], C.bf.data());
+  vcycle32(l + 1);
+  S.prolong_add(grids_[l + 1], C.xf.data(), x);
+  for (int s = 0; s < nu_; ++s) S.gs_pair(b, x, 1, false);
 }
 
 void MultigridPreconditioner::vcycle(int l) {

@@ -16,14 +16,18 @@ std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const
   using Fft = FftPreconditioner;
   if (opt.method == "pcg-fft")
     return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<Fft>(grid, Fft::Scaling::Diagonal));
-  if (opt.method == "pcg-mg")
-    return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<MultigridPreconditioner>(grid, 1));
-  if (opt.method == "pcg-mg2")  // two smoothing sweeps per side, kept for the benchmark comparison
-    return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<MultigridPreconditioner>(grid, 2));
+  using Mg = MultigridPreconditioner;
+  // pcg-mg2: two smoothing sweeps per side; the -f64 variants run the V-cycle in double.
+  if (opt.method == "pcg-mg" || opt.method == "pcg-mg2" || opt.method == "pcg-mg-f64" ||
+      opt.method == "pcg-mg2-f64") {
+    const int nu = opt.method.rfind("pcg-mg2", 0) == 0 ? 2 : 1;
+    const auto prec = opt.method.ends_with("-f64") ? Mg::Precision::Double : Mg::Precision::Single;
+    return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<Mg>(grid, nu, prec));
+  }
   if (opt.method == "pcg-fft-plain")  // unscaled variant, kept for the benchmark comparison
     return std::make_unique<KrylovSolver>(grid, opt, std::make_unique<Fft>(grid, Fft::Scaling::None));
   throw Error("pressure: unknown solver method '" + opt.method +
-              "' (known: cg, pcg-fft, pcg-mg, cholmod)");
+              "' (known: cg, pcg-fft, pcg-fft-plain, pcg-mg, pcg-mg2, pcg-mg-f64, pcg-mg2-f64, cholmod)");
 }
 
 }  // namespace cgdem::pressure

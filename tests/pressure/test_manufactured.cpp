@@ -18,7 +18,7 @@ using B = Boundary;
 void convergence(const char* name, std::array<B, 6> bc, const std::string& method);
 
 void convergence(const char* name, std::array<B, 6> bc) {
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg"}) convergence(name, bc, m);
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64"}) convergence(name, bc, m);
 }
 
 void convergence(const char* name, std::array<B, 6> bc, const std::string& method) {

@@ -40,7 +40,7 @@ double max_diff(const std::vector<double>& a, const std::vector<double>& b) {
 void agreement(const char* name, std::array<B, 6> bc, test::Problem p) {
   (void)bc;
   const auto ref = solve_with(p, "cholmod");
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg"}) {
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64"}) {
     SolveStats st;
     const auto phi = solve_with(p, m, &st);
     const double d = max_diff(phi, ref);
@@ -85,7 +85,7 @@ TEST(PressureMethods, BlockedFacesClosedForm) {
         }
     const auto ref = solve_with(p, "cholmod");
     err[s] = test::max_error(ref, p.exact, false);
-    for (const char* m : {"cg", "pcg-fft", "pcg-mg"}) {
+    for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64"}) {
       SolveStats st;
       const double d = max_diff(solve_with(p, m, &st), ref);
       std::printf("[ blocked ] nx %3d %-8s iterations %3d, diff to cholmod %.2e (tol 1e-7)\n", nx, m, st.iterations, d);
@@ -124,7 +124,7 @@ TEST(PressureMethods, SolidCellsAndEnclosedPocket) {
       for (int i = 0; i < g.nx; ++i)
         if (solid(i, j, k - 1) || solid(i, j, k)) p.az[i + long(g.nx) * (j + long(g.ny) * k)] = 0;
   const auto ref = solve_with(p, "cholmod");
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg"}) {
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64"}) {
     SolveStats st;
     const auto phi = solve_with(p, m, &st);
     double solid_max = 0, pocket_sum = 0;
@@ -151,7 +151,7 @@ TEST(PressureMethods, SingularGivesMeanFree) {
   auto p = test::make_problem(16, 12, 10, {B::Wall, B::Wall, B::Wall, B::Wall, B::Wall, B::Wall});
   const auto phi0 = solve_with(p, "pcg-mg");
   for (auto& v : p.rhs) v += 3.0;
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "cholmod"}) {
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64", "cholmod"}) {
     const auto phi = solve_with(p, m);
     const double d = max_diff(phi, phi0);
     std::printf("[ singular ] %-8s mean(phi) %.1e (tol 1e-12), diff to mean-free-rhs solution %.2e (tol 1e-7)\n", m,
@@ -164,7 +164,7 @@ TEST(PressureMethods, SingularGivesMeanFree) {
 TEST(PressureMethods, ThreadCountIndependent) {
   const auto p = test::make_problem(24, 20, 16, {B::Wall, B::Wall, B::Periodic, B::Periodic, B::Wall, B::Open});
   const int saved = omp_get_max_threads();
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg"}) {
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64"}) {
     omp_set_num_threads(1);
     const auto a = solve_with(p, m);
     omp_set_num_threads(2);
@@ -188,7 +188,7 @@ TEST(PressureMethods, BadInputThrows) {
   bad = g;
   bad.nx = 0;
   EXPECT_THROW(make_pressure_solver(bad, opt), cgdem::Error);
-  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "cholmod"}) {
+  for (const char* m : {"cg", "pcg-fft", "pcg-mg", "pcg-mg-f64", "cholmod"}) {
     opt.method = m;
     auto s = make_pressure_solver(g, opt);
     std::vector<double> ax(9 * 6 * 4, 1.0), ay(8 * 7 * 4, 1.0), az(8 * 6 * 5, 1.0), rhs(g.cells(), 1.0), phi(g.cells());

@@ -1,0 +1,167 @@
+// Single-precision 7-point operator for the multigrid V-cycle; see stencil32.hpp.
+#include "solvers/pressure/stencil32.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cgdem::pressure {
+
+double stencil32_scale(const Poisson7& op) {
+  double m = 0;
+  for (double v : op.diag()) m = std::max(m, v);
+  if (!(m > 0)) return 1.0;
+  return std::ldexp(1.0, -static_cast<int>(std::lround(std::log2(m))));
+}
+
+void Stencil32::set(const Poisson7& op, double scale) {
+  g_ = op.grid();
+  px_ = op.periodic(0), py_ = op.periodic(1), pz_ = op.periodic(2);
+  auto copy = [scale](const std::vector<double>& in, std::vector<float>& out) {
+    out.resize(in.size());
+    const long n = static_cast<long>(in.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+    for (long q = 0; q < n; ++q) out[q] = static_cast<float>(scale * in[q]);
+  };
+  copy(op.wx(), wx_);
+  copy(op.wy(), wy_);
+  copy(op.wz(), wz_);
+  copy(op.diag(), d_);
+}
+
+// One colour of row (j, k), as Poisson7::gs_row in float. mode kNormal: the plain update;
+// kZeroFirst: x = 0 on entry, so x_c = b_c / D_c without reading neighbours; kZeroSecond: the
+// plain update, but cells with D = 0 are set to 0 (their value on entry was never written).
+void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const long plane = long(nx) * ny;
+  const long c0 = long(nx) * (j + long(ny) * k);
+  float* xr = x + c0;
+  const float* br = b + c0;
+  const float* d = d_.data() + c0;
+  const int i0 = (j + k + color) & 1;
+  if (mode == Mode::kZeroFirst) {
+    for (int i = i0; i < nx; i += 2) xr[i] = d[i] > 0 ? br[i] / d[i] : 0.0f;
+    return;
+  }
+  const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
+  const float* xs = (j > 0) ? xr - nx : (py_ ? xr + long(nx) * (ny - 1) : xr);
+  const float* xn = (j < ny - 1) ? xr + nx : (py_ ? xr - long(nx) * (ny - 1) : xr);
+  const float* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
+  const float* wn = wy_.data() + long(nx) * ((j == ny - 1 && py_ ? 0 : j + 1) + long(ny + 1) * k);
+  const float* xb = (k > 0) ? xr - plane : (pz_ ? xr + plane * (nz - 1) : xr);
+  const float* xt = (k < nz - 1) ? xr + plane : (pz_ ? xr - plane * (nz - 1) : xr);
+  const float* wb = wz_.data() + c0;
+  const float* wt = wz_.data() + (k == nz - 1 && pz_ ? long(nx) * j : c0 + plane);
+  const bool zero = mode == Mode::kZeroSecond;
+  for (int i = i0; i < nx; i += 2) {
+    float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
+    if (i > 0) s += wxr[i] * xr[i - 1]; else if (px_) s += wxr[0] * xr[nx - 1];
+    if (i < nx - 1) s += wxr[i + 1] * xr[i + 1]; else if (px_) s += wxr[0] * xr[0];
+    if (d[i] > 0) xr[i] = s / d[i];
+    else if (zero) xr[i] = 0.0f;
+  }
+}
+
+void Stencil32::gs_color(const float* b, float* x, int color, Mode mode) const {
+  const int ny = g_.ny, nz = g_.nz;
+  const long plane = long(g_.nx) * ny;
+  const bool odd_wrap = (py_ && ny % 2) || (pz_ && nz % 2);
+#pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap && plane * nz >= kParallelMin)
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, mode);
+}
+
+void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) const {
+  const int ny = g_.ny, nz = g_.nz;
+  const long plane = long(g_.nx) * ny;
+  const bool odd_wrap = (py_ && ny % 2) || (pz_ && nz % 2) || (px_ && g_.nx % 2);
+  if (zero_start && odd_wrap) {  // same-colour neighbours at the wrap: start from a real zero
+    std::fill(x, x + n(), 0.0f);
+    zero_start = false;
+  }
+  const Mode m1 = zero_start ? Mode::kZeroFirst : Mode::kNormal;
+  const Mode m2 = zero_start ? Mode::kZeroSecond : Mode::kNormal;
+  const int second = 1 - first;
+  if (odd_wrap || pz_ || nz < 4) {  // plane 0 and nz-1 are neighbours: two plain sweeps
+    gs_color(b, x, first, m1);
+    gs_color(b, x, second, m2);
+    return;
+  }
+  auto plane_sweep = [&](int k, int color, Mode m) {
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, m);
+  };
+#pragma omp parallel if (plane * nz >= kParallelMin)
+  {
+    const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
+    const int ka = int(long(nz) * tid / nth), kb = int(long(nz) * (tid + 1) / nth);
+    for (int k = ka; k < kb; ++k) {
+      plane_sweep(k, first, m1);
+      if (k - 1 > ka && k - 1 < kb - 1) plane_sweep(k - 1, second, m2);
+    }
+#pragma omp barrier
+    if (kb > ka) plane_sweep(ka, second, m2);
+    if (kb - 1 > ka) plane_sweep(kb - 1, second, m2);
+  }
+}
+
+// r = b - A x on row (j, k) (the arithmetic of Poisson7::apply_rows, in float).
+void Stencil32::residual_row(const float* b, const float* x, int j, int k, float* r) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const long plane = long(nx) * ny;
+  const long c0 = long(nx) * (j + long(ny) * k);
+  const float* xr = x + c0;
+  const float* br = b + c0;
+  const float* d = d_.data() + c0;
+  const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
+  const float* xs = (j > 0) ? xr - nx : (py_ ? xr + long(nx) * (ny - 1) : xr);
+  const float* xn = (j < ny - 1) ? xr + nx : (py_ ? xr - long(nx) * (ny - 1) : xr);
+  const float* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
+  const float* wn = wy_.data() + long(nx) * ((j == ny - 1 && py_ ? 0 : j + 1) + long(ny + 1) * k);
+  const float* xb = (k > 0) ? xr - plane : (pz_ ? xr + plane * (nz - 1) : xr);
+  const float* xt = (k < nz - 1) ? xr + plane : (pz_ ? xr - plane * (nz - 1) : xr);
+  const float* wb = wz_.data() + c0;
+  const float* wt = wz_.data() + (k == nz - 1 && pz_ ? long(nx) * j : c0 + plane);
+  for (int i = 0; i < nx; ++i)
+    r[i] = br[i] - d[i] * xr[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
+  for (int i = 1; i < nx; ++i) r[i] += wxr[i] * xr[i - 1];
+  for (int i = 0; i < nx - 1; ++i) r[i] += wxr[i + 1] * xr[i + 1];
+  if (px_) {
+    r[0] += wxr[0] * xr[nx - 1];
+    r[nx - 1] += wxr[0] * xr[0];
+  }
+}
+
+void Stencil32::restrict_residual(const float* b, const float* x, const GridSpec& c, float* bc) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+#pragma omp parallel if (n() >= kParallelMin)
+  {
+    std::vector<float> row(nx);
+#pragma omp for collapse(2) schedule(static)
+    for (int K = 0; K < c.nz; ++K)
+      for (int J = 0; J < c.ny; ++J) {
+        float* out = bc + long(c.nx) * (J + long(c.ny) * K);
+        std::fill(out, out + c.nx, 0.0f);
+        for (int k = 2 * K; k <= std::min(2 * K + 1, nz - 1); ++k)
+          for (int j = 2 * J; j <= std::min(2 * J + 1, ny - 1); ++j) {
+            residual_row(b, x, j, k, row.data());
+            for (int i = 0; i < nx; ++i) out[i / 2] += row[i];
+          }
+        for (int I = 0; I < c.nx; ++I) out[I] *= 0.125f;
+      }
+  }
+}
+
+void Stencil32::prolong_add(const GridSpec& c, const float* xc, float* x) const {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+#pragma omp parallel for collapse(2) schedule(static) if (n() >= kParallelMin)
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j) {
+      const float* xcr = xc + long(c.nx) * (j / 2 + long(c.ny) * (k / 2));
+      float* xf = x + long(nx) * (j + long(ny) * k);
+      for (int i = 0; i < nx; ++i) xf[i] += xcr[i / 2];
+    }
+}
+
+}  // namespace cgdem::pressure

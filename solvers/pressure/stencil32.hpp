@@ -1,0 +1,55 @@
+// Single-precision copy of a Poisson7 operator, for the multigrid preconditioner's smoother,
+// residual and transfers (mixed precision: PCG runs in double, the V-cycle in float).
+//
+// Scaling: the copy holds s w_f and s D_c with s = 2^-e, 2^e the power of two nearest to the
+// largest diagonal of the finest level, the same s on every level. The V-cycle built from these
+// operators approximates (s A)^{-1} = A^{-1}/s, so the caller multiplies its output by s. A power
+// of two keeps the scaling exact; it only keeps the float values near 1 whatever the units.
+//
+// Why float is enough: the preconditioner only has to be a fixed, nearly symmetric positive
+// operator; its rounding (relative 6e-8) perturbs M^{-1}, not the residual PCG computes in
+// double, so the final accuracy is that of the double PCG (tests/pressure/test_methods.cpp).
+//
+// Red-black Gauss-Seidel, the same sweep order (and the same thread-independent plane chunking
+// of the fused pair) as Poisson7::gauss_seidel_pair, see poisson7.hpp:
+//   x_c = (b_c + sum_nb w_f x_nb) / D_c      (cells with D_c = 0 are left alone)
+// Restriction of the residual R (b - A x), R = P^T/8 (2x2x2 children; fewer at an odd edge),
+// is computed row by row without storing b - A x.
+#pragma once
+#include <vector>
+
+#include "solvers/pressure/poisson7.hpp"
+
+namespace cgdem::pressure {
+
+class Stencil32 {
+ public:
+  // Copies op's weights and diagonal times `scale` in single precision.
+  void set(const Poisson7& op, double scale);
+
+  // Two half-sweeps, colour `first` then 1 - first. zero_start: x is taken as 0 on entry and
+  // need not be initialised (the first colour is then b_c / D_c; cells with D_c = 0 get 0).
+  void gs_pair(const float* b, float* x, int first, bool zero_start) const;
+  // bc = R (b - A x) on the coarse grid `c` (n_c = ceil(n/2) per axis).
+  void restrict_residual(const float* b, const float* x, const GridSpec& c, float* bc) const;
+  // x += P xc: piecewise-constant prolongation from the coarse grid `c`.
+  void prolong_add(const GridSpec& c, const float* xc, float* x) const;
+
+  long n() const { return g_.cells(); }
+  const GridSpec& grid() const { return g_; }
+
+ private:
+  enum class Mode { kNormal, kZeroFirst, kZeroSecond };
+  void gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const;
+  void gs_color(const float* b, float* x, int color, Mode mode) const;
+  void residual_row(const float* b, const float* x, int j, int k, float* r) const;
+
+  GridSpec g_;
+  bool px_ = false, py_ = false, pz_ = false;
+  std::vector<float> wx_, wy_, wz_, d_;
+};
+
+// Power of two nearest to 1 / max(D) of op (1 if D = 0 everywhere).
+double stencil32_scale(const Poisson7& op);
+
+}  // namespace cgdem::pressure
