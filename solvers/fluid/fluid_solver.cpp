@@ -18,8 +18,6 @@ FaceRange active_range(const MacGrid& g, const FluidBoundary& bc, int d) {
   return r;
 }
 
-double value_or_zero(const Field& f, int i, int j, int k) { return f.empty() ? 0.0 : f(i, j, k); }
-
 void check_source(const Field& f, const MacGrid& g, int d, const char* name) {
   if (!f.empty() && f.extent() != g.face_extent(d))
     throw Error(fmt::format("fluid sources: {}[{}] does not have the face layout of the grid", name, d));
@@ -84,36 +82,59 @@ void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces&
   for (int d = 0; d < 3; ++d) {
     FaceRange r = active_range(g_, params_.bc, d);
     const Field& fe = src.f_explicit[d];
+    Field& Rd = R[d];
 #pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
-    for (int k = -kGhost; k < R[d].nk() + kGhost; ++k)
-      for (int j = -kGhost; j < R[d].nj() + kGhost; ++j)
-        for (int i = -kGhost; i < R[d].ni() + kGhost; ++i) {
-          const bool active = k >= r[2][0] && k < r[2][1] && j >= r[1][0] && j < r[1][1] && i >= r[0][0] && i < r[0][1];
-          R[d](i, j, k) = active ? E[d](i, j, k) * params_.rho * params_.gravity[d] +  // eq. (13) eps rho g
-                                       value_or_zero(fe, i, j, k)
-                                 : 0.0;
+    for (int k = -kGhost; k < Rd.nk() + kGhost; ++k)
+      for (int j = -kGhost; j < Rd.nj() + kGhost; ++j) {
+        double* out = Rd.data() + Rd.index(-kGhost, j, k);
+        const int n = Rd.ni() + 2 * kGhost;
+        const bool row = k >= r[2][0] && k < r[2][1] && j >= r[1][0] && j < r[1][1];
+        if (!row) {
+          std::fill(out, out + n, 0.0);
+          continue;
         }
+        const double* e = E[d].data() + E[d].index(-kGhost, j, k);
+        const double* f = fe.empty() ? nullptr : fe.data() + fe.index(-kGhost, j, k);
+        for (int q = 0; q < n; ++q) {
+          const int i = q - kGhost;
+          const bool active = i >= r[0][0] && i < r[0][1];
+          out[q] = active ? e[q] * params_.rho * params_.gravity[d] + (f ? f[q] : 0.0)  // eq. (13) eps rho g
+                          : 0.0;
+        }
+      }
     add_momentum_terms(g_, d, true, params_.advection, params_.rho, params_.mu, vel, ef, eps_cell, r, R[d]);
   }
 }
 
-// (E^{n+1} rho/dt + K) u_hat = E^n rho u^n/dt + R + K v_p, then the direct forcing.
-void FluidSolver::predict(const FluidState& s, const Faces& R, const Sources& src, double dt, Faces& ustar) {
+// (E^{n+1} rho/dt + K) u_hat = E^n rho u^n/dt + R + K v_p, then the direct forcing, with
+// R = R0 (Euler) or (R0 + R1)/2 (Heun, R1 != nullptr). Only the active faces are written: the
+// ghost fill sets every other face (prescribed normal velocity, periodic image, ghosts).
+void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1, const Sources& src, double dt,
+                          Faces& ustar) {
+  const double rho = params_.rho;
   for (int d = 0; d < 3; ++d) {
-    ustar[d] = s.vel(d);  // prescribed boundary faces keep their values
     FaceRange r = active_range(g_, params_.bc, d);
-    const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d];
+    const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d], &u = s.vel(d);
+    const Field &K = src.K[d], &Kv = src.Kv[d];
+    // All face fields of component d share one layout: one offset per row serves them all.
 #pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
     for (int k = r[2][0]; k < r[2][1]; ++k)
-      for (int j = r[1][0]; j < r[1][1]; ++j)
+      for (int j = r[1][0]; j < r[1][1]; ++j) {
+        const long o = u.index(0, j, k);
+        const double *ur = u.data() + o, *eo = E_old_[d].data() + o, *en = E_new_[d].data() + o;
+        const double *r0 = R0[d].data() + o, *r1 = R1 ? (*R1)[d].data() + o : nullptr;
+        const double *kr = K.empty() ? nullptr : K.data() + o, *kv = Kv.empty() ? nullptr : Kv.data() + o;
+        const double *ar = al.data() + o, *br = ub.data() + o;
+        double* out = ustar[d].data() + o;
         for (int i = r[0][0]; i < r[0][1]; ++i) {
-          double K = value_or_zero(src.K[d], i, j, k);
-          double num = E_old_[d](i, j, k) * params_.rho * s.vel(d)(i, j, k) / dt + R[d](i, j, k) +
-                       value_or_zero(src.Kv[d], i, j, k);
-          double u_hat = num / (E_new_[d](i, j, k) * params_.rho / dt + K);  // eq. (13), K implicit
-          double a = al(i, j, k);
-          ustar[d](i, j, k) = (1 - a) * u_hat + a * ub(i, j, k);  // eqs. (18), (20)
+          const double Kf = kr ? kr[i] : 0.0;
+          const double Rf = r1 ? 0.5 * (r0[i] + r1[i]) : r0[i];
+          const double num = eo[i] * rho * ur[i] / dt + Rf + (kv ? kv[i] : 0.0);
+          const double u_hat = num / (en[i] * rho / dt + Kf);  // eq. (13), K implicit
+          const double a = ar[i];
+          out[i] = (1 - a) * u_hat + a * br[i];  // eqs. (18), (20)
         }
+      }
     fill_velocity_component_ghosts(g_, params_.bc, d, ustar[d]);  // periodic images, wall faces
   }
 }
@@ -163,7 +184,7 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
   }
   {
     auto t = timers_.scope("predictor update");
-    predict(s, R0_, src, dt, ustar_);
+    predict(s, R0_, nullptr, src, dt, ustar_);
   }
   set_pressure_coefficients(src, dt);
   if (params_.time_order == 2) {
@@ -180,16 +201,8 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
       explicit_rhs(v1, s.eps, E_new_, src, R1_);
     }
     auto t = timers_.scope("predictor update");
-    for (int d = 0; d < 3; ++d) {
-      double* r0 = R0_[d].data();
-      const double* r1 = R1_[d].data();
-      const long n = static_cast<long>(R0_[d].extent()[0] + 2 * kGhost) * (R0_[d].extent()[1] + 2 * kGhost) *
-                     (R0_[d].extent()[2] + 2 * kGhost);
-#pragma omp parallel for schedule(static) if (n > kOmpMinWork)
-      for (long q = 0; q < n; ++q) r0[q] = 0.5 * (r0[q] + r1[q]);
-    }
     std::swap(s.p, p1_);  // initial guess
-    predict(s, R0_, src, dt, ustar_);
+    predict(s, R0_, &R1_, src, dt, ustar_);  // Heun: R = (R0 + R1)/2
   }
   project(s, src, dt, ustar_, vel, s.p, st);
   auto t = timers_.scope("diagnostics");

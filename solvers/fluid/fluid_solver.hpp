@@ -58,7 +58,7 @@ class FluidSolver {
   void face_eps(const Field& eps_cell, Faces& E) const;
   using Vel = std::array<Field*, 3>;
   void explicit_rhs(const Vel& vel, const Field& eps_cell, const Faces& E, const Sources& src, Faces& R);
-  void predict(const FluidState& s, const Faces& R, const Sources& src, double dt, Faces& ustar);
+  void predict(const FluidState& s, const Faces& R0, const Faces* R1, const Sources& src, double dt, Faces& ustar);
   // Pressure p (initial guess in, solution out) and vel = ustar corrected; reads state.eps,
   // state.eps_old.
   void project(const FluidState& s, const Sources& src, double dt, Faces& ustar, const Vel& vel, Field& p,
@@ -74,6 +74,7 @@ class FluidSolver {
   Field p1_;
   std::vector<double> ax_, ay_, az_, rhs_, phi_;
   std::array<std::vector<double>, 3> next_;
+  std::array<std::vector<double>, 3> corr_;  // c_f = a_f / E_f of the correction, pressure layout
   bool coeffs_set_ = false;
 };
 

@@ -73,6 +73,10 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   ay_ = ay;
   az_ = az;
   const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy), hz = 1 / (g_.dz * g_.dz);
+  // The previous weights decide whether the connectivity (which faces have w > 0) changed.
+  const bool had = !comp_.empty();
+  std::vector<double> old_x, old_y, old_z, old_open;
+  if (had) old_x.swap(wx_), old_y.swap(wy_), old_z.swap(wz_), old_open.swap(open_);
   wx_.assign(ax.size(), 0.0);
   wy_.assign(ay.size(), 0.0);
   wz_.assign(az.size(), 0.0);
@@ -80,7 +84,12 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   open_.assign(n(), 0.0);
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const auto& bc = g_.bc;
-  for (int k = 0; k < nz; ++k)
+  const bool par = n() >= kParallelMin;
+  // Every cell sums its faces in the same order as a serial sweep x, y, z (face index
+  // ascending): x and y faces touch one k plane (parallel over k), z faces one (i, j) column
+  // (parallel over j), so the sums are those of the serial loops.
+#pragma omp parallel for schedule(static) if (par)
+  for (int k = 0; k < nz; ++k) {
     for (int j = 0; j < ny; ++j) {
       for (int i = 0; i <= nx; ++i) {  // x faces: interior, wrap (face 0) or boundary
         const long f = i + long(nx + 1) * (j + long(ny) * k);
@@ -92,7 +101,6 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (i == nx && bc[1] == Boundary::Open) open_[cl] += 2 * w;
       }
     }
-  for (int k = 0; k < nz; ++k)
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const long f = i + long(nx) * (j + long(ny + 1) * k);
@@ -103,9 +111,11 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (j == 0 && bc[2] == Boundary::Open) open_[cn] += 2 * w;
         else if (j == ny && bc[3] == Boundary::Open) open_[cs] += 2 * w;
       }
+  }
   const long plane = long(nx) * ny;
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j < ny; ++j)
+#pragma omp parallel for schedule(static) if (par)
+  for (int j = 0; j < ny; ++j)
+    for (int k = 0; k <= nz; ++k)
       for (int i = 0; i < nx; ++i) {
         const long f = i + long(nx) * (j + long(ny) * k);
         const long cb = f - plane, ct = f;
@@ -115,7 +125,19 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (k == 0 && bc[4] == Boundary::Open) open_[ct] += 2 * w;
         else if (k == nz && bc[5] == Boundary::Open) open_[cb] += 2 * w;
       }
-  for (long c = 0; c < n(); ++c) diag_[c] += open_[c];
+  const long N = n();
+#pragma omp parallel for schedule(static) if (par)
+  for (long c = 0; c < N; ++c) diag_[c] += open_[c];
+  // Same pattern of positive weights: the components (and floating cells) are unchanged.
+  auto same = [par](const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    const long m = static_cast<long>(a.size());
+    bool eq = true;
+#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
+    for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
+    return eq;
+  };
+  if (had && same(old_x, wx_) && same(old_y, wy_) && same(old_z, wz_) && same(old_open, open_)) return;
   label_components();
 }
 
