@@ -1,11 +1,15 @@
-// PressureSolver for the Krylov methods ("cg", "pcg-fft", "pcg-mg"): SUNDIALS PCG on the SPD
-// system  A phi = -rhs  (A = -div(a grad .), poisson7.hpp) with an optional preconditioner.
+// PressureSolver for the Krylov methods ("cg", "pcg-fft", "pcg-mg"): PCG on the SPD system
+// A phi = -rhs  (A = -div(a grad .), poisson7.hpp) with an optional preconditioner. Engine:
+// the fused PCG of fused_pcg.hpp (default for the preconditioned methods) or SUNDIALS'
+// SUNLinSol_PCG (the unpreconditioned "cg" reference; selectable for comparison) - the same
+// recurrence, so the same iterates up to rounding.
 // Singular parts (floating components) are handled by projecting rhs, the preconditioned
 // residual and phi onto the mean-free subspace of every floating component.
 #pragma once
 #include <memory>
 #include <vector>
 
+#include "solvers/pressure/fused_pcg.hpp"
 #include "solvers/pressure/poisson7.hpp"
 #include "solvers/pressure/preconditioner.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
@@ -15,8 +19,10 @@ namespace cgdem::pressure {
 
 class KrylovSolver : public PressureSolver {
  public:
+  enum class Engine { Fused, Sundials };
   // prec == nullptr: unpreconditioned CG.
-  KrylovSolver(const GridSpec& g, const SolverOptions& opt, std::unique_ptr<Preconditioner> prec);
+  KrylovSolver(const GridSpec& g, const SolverOptions& opt, std::unique_ptr<Preconditioner> prec,
+               Engine engine = Engine::Fused);
   void set_coefficients(const std::vector<double>& ax, const std::vector<double>& ay,
                         const std::vector<double>& az) override;
   SolveStats solve(const std::vector<double>& rhs, std::vector<double>& phi) override;
@@ -28,6 +34,8 @@ class KrylovSolver : public PressureSolver {
   Poisson7 op_;
   std::unique_ptr<Preconditioner> prec_;
   SundialsPcg pcg_;
+  FusedPcg fused_;
+  Engine engine_;
   bool have_coef_ = false;
   std::vector<double> b_, r_;
 };

@@ -263,7 +263,7 @@ void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const
 }
 
 template <bool kResidual>
-void Poisson7::apply_rows(const double* x, double* y, const double* b) const {
+void Poisson7::apply_rows(const double* x, double* y, const double* b, double* row_dot) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const long plane = long(nx) * ny;
@@ -296,10 +296,23 @@ void Poisson7::apply_rows(const double* x, double* y, const double* b) const {
         const double* br = b + c0;
         for (int i = 0; i < nx; ++i) yr[i] = br[i] - yr[i];
       }
+      if (row_dot) {
+        double s = 0;
+        for (int i = 0; i < nx; ++i) s += xr[i] * yr[i];
+        row_dot[j + long(ny) * k] = s;
+      }
     }
 }
 
 void Poisson7::apply(const double* x, double* y) const { apply_rows<false>(x, y, nullptr); }
+
+double Poisson7::apply_dot(const double* x, double* y) const {
+  row_dot_.resize(long(g_.ny) * g_.nz);
+  apply_rows<false>(x, y, nullptr, row_dot_.data());
+  double s = 0;
+  for (double v : row_dot_) s += v;
+  return s;
+}
 
 // r = b - A x, row by row right after A x (the same arithmetic as apply, then b - y).
 void Poisson7::residual(const double* b, const double* x, double* r) const { apply_rows<true>(x, r, b); }

@@ -31,6 +31,8 @@ class Poisson7 {
   void apply(const double* x, double* y) const;
   // r = b - A x
   void residual(const double* b, const double* x, double* r) const;
+  // y = A x and returns x . y (row partial sums added in row order: independent of threads).
+  double apply_dot(const double* x, double* y) const;
   // One Gauss-Seidel half-sweep over the cells with (i+j+k) % 2 == color:
   //   x_c = (b_c + sum_nb w_f x_nb) / D_c   (cells with D_c = 0 are left alone).
   void gauss_seidel_color(const double* b, double* x, int color) const;
@@ -66,7 +68,8 @@ class Poisson7 {
  private:
   void label_components();
   template <bool kResidual>
-  void apply_rows(const double* x, double* y, const double* b) const;
+  void apply_rows(const double* x, double* y, const double* b, double* row_dot = nullptr) const;
+  mutable std::vector<double> row_dot_;
   void gs_row(const double* b, double* x, int j, int k, int color) const;
 
   GridSpec g_;

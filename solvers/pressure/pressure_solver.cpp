@@ -10,7 +10,8 @@
 namespace cgdem::pressure {
 
 std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const SolverOptions& opt) {
-  if (opt.method == "cg") return std::make_unique<KrylovSolver>(grid, opt, nullptr);
+  if (opt.method == "cg")  // the reference: SUNDIALS' PCG without preconditioner
+    return std::make_unique<KrylovSolver>(grid, opt, nullptr, KrylovSolver::Engine::Sundials);
   if (opt.method == "cholmod") return std::make_unique<DirectSolver>(grid, opt);
   Poisson7 check(grid);  // validates the grid before any planning
   using Fft = FftPreconditioner;
