@@ -12,7 +12,11 @@
 //
 // Red-black Gauss-Seidel, the same sweep order (and the same thread-independent plane chunking
 // of the fused pair) as Poisson7::gauss_seidel_pair, see poisson7.hpp:
-//   x_c = (b_c + sum_nb w_f x_nb) / D_c      (cells with D_c = 0 are left alone)
+//   x_c = (b_c + sum_nb w_f x_nb) * (1/D_c)
+// A cell with D_c = 0 (all faces blocked) gets x_c = 0, where the double smoother leaves it
+// alone: such a cell, and the fine cells under a coarse one, form floating components that
+// the Krylov solver projects to mean zero after the preconditioner, so z is the same; the
+// branch-free update vectorises.
 // Restriction of the residual R (b - A x), R = P^T/8 (2x2x2 children; fewer at an odd edge),
 // is computed row by row without storing b - A x.
 #pragma once
@@ -28,7 +32,7 @@ class Stencil32 {
   void set(const Poisson7& op, double scale);
 
   // Two half-sweeps, colour `first` then 1 - first. zero_start: x is taken as 0 on entry and
-  // need not be initialised (the first colour is then b_c / D_c; cells with D_c = 0 get 0).
+  // need not be initialised (the first colour is then b_c / D_c).
   void gs_pair(const float* b, float* x, int first, bool zero_start) const;
   // bc = R (b - A x) on the coarse grid `c` (n_c = ceil(n/2) per axis).
   void restrict_residual(const float* b, const float* x, const GridSpec& c, float* bc) const;
@@ -39,14 +43,14 @@ class Stencil32 {
   const GridSpec& grid() const { return g_; }
 
  private:
-  enum class Mode { kNormal, kZeroFirst, kZeroSecond };
+  enum class Mode { kNormal, kZeroFirst };
   void gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const;
   void gs_color(const float* b, float* x, int color, Mode mode) const;
   void residual_row(const float* b, const float* x, int j, int k, float* r) const;
 
   GridSpec g_;
   bool px_ = false, py_ = false, pz_ = false;
-  std::vector<float> wx_, wy_, wz_, d_;
+  std::vector<float> wx_, wy_, wz_, d_, id_;  // id_ = 1/D (0 where D = 0)
 };
 
 // Power of two nearest to 1 / max(D) of op (1 if D = 0 everywhere).
