@@ -175,20 +175,28 @@ void Poisson7::label_components() {
     comp_count_[comp_[c]] += 1.0;
     floating_cells_.push_back(c);
   }
+  isolated_cells_.clear();
+  shared_cells_.clear();
+  for (long c : floating_cells_) (comp_count_[comp_[c]] == 1.0 ? isolated_cells_ : shared_cells_).push_back(c);
 }
 
 void Poisson7::project_floating(double* v) const {
   if (n_floating_ == 0) return;
+  // One-cell components: v - mean(v) = v - v = 0.
+  const long I = static_cast<long>(isolated_cells_.size());
+#pragma omp parallel for schedule(static) if (I >= kParallelMin)
+  for (long q = 0; q < I; ++q) v[isolated_cells_[q]] = 0.0;
+  const long M = static_cast<long>(shared_cells_.size());
+  if (M == 0) return;
   std::vector<double> sum(n_floating_, 0.0);
-  const long M = static_cast<long>(floating_cells_.size());
   for (long q = 0; q < M; ++q) {  // ascending cell order, as a sweep over all cells
-    const long c = floating_cells_[q];
+    const long c = shared_cells_[q];
     sum[comp_[c]] += v[c];
   }
   for (int q = 0; q < n_floating_; ++q) sum[q] /= comp_count_[q];
 #pragma omp parallel for schedule(static) if (M >= kParallelMin)
   for (long q = 0; q < M; ++q) {
-    const long c = floating_cells_[q];
+    const long c = shared_cells_[q];
     v[c] -= sum[comp_[c]];
   }
 }

@@ -76,6 +76,7 @@ class Poisson7 {
   std::vector<double> ax_, ay_, az_, wx_, wy_, wz_, diag_, open_;
   std::vector<int> comp_;
   std::vector<long> floating_cells_;  // cells of floating components, ascending
+  std::vector<long> isolated_cells_, shared_cells_;  // of one-cell / larger floating components
   std::vector<double> comp_count_;
   int n_floating_ = 0;
 };

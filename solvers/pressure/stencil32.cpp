@@ -29,7 +29,9 @@ void Stencil32::set(const Poisson7& op, double scale) {
   copy(op.wz(), wz_);
   copy(op.diag(), d_);
   id_.resize(d_.size());
-  for (size_t c = 0; c < d_.size(); ++c) id_[c] = d_[c] > 0 ? 1.0f / d_[c] : 0.0f;
+  const long n = static_cast<long>(d_.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (long c = 0; c < n; ++c) id_[c] = d_[c] > 0 ? 1.0f / d_[c] : 0.0f;
 }
 
 namespace {
