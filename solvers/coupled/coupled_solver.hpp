@@ -68,9 +68,12 @@ class CoupledSolver {
   coupling::VoidStats void_stats_;
   // Wall fractions for the exchange's masks at time t (the air solver keeps its own copy).
   void walls_at(double t);
+  void weights_at(double t);
+  coupling::ParcelWeights w_;
+  bool weights_fresh_ = false;
   fluid::IbmFractions walls_;
   PhaseTimers timers_;
-  int t_gather_, t_map_, t_deposit_;
+  int t_weights_, t_gather_, t_map_, t_deposit_;
 };
 
 }  // namespace cgdem

@@ -14,6 +14,7 @@ Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species,
     d_original_.push_back(s.d_original);
   }
   cells_ = cell_lattice(g_, periodic_);
+  cell_layout_ = fluid::make_cell_field(g_);
   for (int d = 0; d < 3; ++d) faces_[d] = face_lattice(g_, d, periodic_);
   for (int d = 0; d < 3; ++d) {
     blocked_[d] = fluid::make_face_field(g_, d);
@@ -39,12 +40,29 @@ Weights Exchange::face_weights(int d, const Vec3& x, const fluid::Field& layout)
   return masked(tsc_stencil(faces_[d], x), w ? walls_->alpha_face[d] : no_alpha_, blocked_[d], layout);
 }
 
+void Exchange::weights(const Particles& p, ParcelWeights& w) const {
+  const long n = static_cast<long>(p.size());
+  w.cell.resize(n);
+  for (auto& f : w.face) f.resize(n);
+#pragma omp parallel for schedule(static) if (n >= 1024)
+  for (long i = 0; i < n; ++i) {
+    w.cell[i] = cell_weights(p.x[i], cell_layout_);
+    for (int d = 0; d < 3; ++d) w.face[d][i] = face_weights(d, p.x[i], blocked_[d]);
+  }
+}
+
 VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
+  ParcelWeights w;
+  weights(p, w);
+  return void_fraction(p, w, eps);
+}
+
+VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const {
   fluid::Field vs = fluid::make_cell_field(g_);
   VoidStats st;
   for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
     const double V = volume_[p.species[i]];
-    deposit(cell_weights(p.x[i], vs), V, vs);
+    deposit(w.cell[i], V, vs);
     st.parcel_volume += V;
   }
   const double vc = g_.dx * g_.dx * g_.dx;
@@ -77,24 +95,24 @@ std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState&
 }
 
 Exchange::AirSample Exchange::sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad,
-                                     const Vec3& x) const {
+                                     const ParcelWeights& w, size_t i) const {
   AirSample a;
-  const Weights wc = cell_weights(x, air.eps);
+  const Weights& wc = w.cell[i];
   a.eps = interpolate(wc, air.eps);
   for (int d = 0; d < 3; ++d) {
-    a.u[d] = interpolate(face_weights(d, x, air.vel(d)), air.vel(d));
+    a.u[d] = interpolate(w.face[d][i], air.vel(d));
     a.grad_p[d] = interpolate_cell_faces(wc, air.eps, d, grad[d]);
   }
   return a;
 }
 
-void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const {
+void Exchange::air_to_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p) const {
   const auto grad = pressure_gradient(air);
   const int n = static_cast<int>(p.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
     const int s = p.species[i];
-    const AirSample a = sample(air, grad, p.x[i]);
+    const AirSample a = sample(air, grad, w, i);
     const double slip = norm(a.u - p.v[i]);
     p.u_fluid[i] = a.u;
     p.drag[i] = volume_[s] * beta_over_solid(params_.law, a.eps, slip, d_original_[s], params_.air);  // eq. (8)
@@ -102,12 +120,13 @@ void Exchange::air_to_parcels(const fluid::FluidState& air, Particles& p) const 
   }
 }
 
-void Exchange::correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const {
+void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
+                               Particles& p) const {
   const int n = static_cast<int>(p.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
     Vec3 u;
-    for (int d = 0; d < 3; ++d) u[d] = interpolate(face_weights(d, p.x[i], air.vel(d)), air.vel(d));
+    for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
     const Vec3 dj = (dt_f * p.drag[i]) * (u - p.u_fluid[i]);
     const Vec3 v0 = p.v[i];
     p.v[i] += p.inv_mass[i] * dj;
@@ -116,7 +135,7 @@ void Exchange::correct_parcels(const fluid::FluidState& air, double dt_f, Partic
   }
 }
 
-void Exchange::parcels_to_air(const Particles& p, double dt_f, fluid::Sources& src) const {
+void Exchange::parcels_to_air(const Particles& p, const ParcelWeights& w, double dt_f, fluid::Sources& src) const {
   const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
   for (int d = 0; d < 3; ++d) {
     src.K[d] = fluid::make_face_field(g_, d);
@@ -127,9 +146,8 @@ void Exchange::parcels_to_air(const Particles& p, double dt_f, fluid::Sources& s
     if (c == 0) continue;
     const Vec3 cv = inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i]);  // c vbar
     for (int d = 0; d < 3; ++d) {
-      const Weights st = face_weights(d, p.x[i], src.K[d]);
-      deposit(st, c, src.K[d]);
-      deposit(st, cv[d], src.Kv[d]);
+      deposit(w.face[d][i], c, src.K[d]);
+      deposit(w.face[d][i], cv[d], src.Kv[d]);
     }
   }
   for (int d = 0; d < 3; ++d) {

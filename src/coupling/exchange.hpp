@@ -34,7 +34,10 @@
 // with faces where the air moves. The boundary faces of the domain's wall sides are
 // masked the same way (prescribed velocity: a deposit there would be lost to the wall).
 // Conservation and adjointness hold as before.
-// Deposits run serially in particle order (deterministic); gathers run in parallel.
+// Weights: every transfer of a step reads the same kernel weights of a parcel (its cell
+// stencil and its three face stencils, masked by the same walls), so they are built once
+// per position (ParcelWeights, in parallel) and handed to the transfers. Deposits run
+// serially in particle order (deterministic); gathers run in parallel.
 #pragma once
 #include <vector>
 
@@ -61,20 +64,35 @@ struct VoidStats {
   double eps_min_raw = 1;     // smallest 1 - V_s/dx^3 before clipping
 };
 
+// The masked kernel weights of every parcel at one set of positions and wall fractions.
+// Index i is parcel i of the Particles they were built from; valid until the parcels move,
+// are re-sorted or the walls change.
+struct ParcelWeights {
+  std::vector<Weights> cell;
+  std::array<std::vector<Weights>, 3> face;
+  size_t size() const { return cell.size(); }
+};
+
 class Exchange {
  public:
   Exchange(const fluid::MacGrid& g, const std::vector<Species>& species, ExchangeParams params);
 
+  // The weights of every parcel at its current position with the current walls (parallel).
+  void weights(const Particles& p, ParcelWeights& w) const;
+
+  // Every transfer takes the weights of the parcels' current positions (precondition:
+  // w.size() == p.size(), built by weights() after the parcels last moved).
   // eps from the parcel positions (writes every interior cell of eps).
-  VoidStats void_fraction(const Particles& p, fluid::Field& eps) const;
+  VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const;
+  VoidStats void_fraction(const Particles& p, fluid::Field& eps) const;  // builds the weights
   // Sets p.u_fluid, p.drag and p.f_ext from the air state (u, p, eps of `air`).
-  void air_to_parcels(const fluid::FluidState& air, Particles& p) const;
+  void air_to_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p) const;
   // K and Kv of src (resized to the face layout) from p.drag, p.u_fluid and p.j_drag
   // accumulated over a fluid step of dt_f.
-  void parcels_to_air(const Particles& p, double dt_f, fluid::Sources& src) const;
+  void parcels_to_air(const Particles& p, const ParcelWeights& w, double dt_f, fluid::Sources& src) const;
   // End-of-step drag correction of the parcel velocities (and their fluid work) from the air
   // velocity at t^{n+1}; reads p.drag, p.u_fluid as set by air_to_parcels at t^n.
-  void correct_parcels(const fluid::FluidState& air, double dt_f, Particles& p) const;
+  void correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f, Particles& p) const;
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
   void set_walls(const fluid::IbmFractions* walls) { walls_ = walls; }
@@ -89,7 +107,8 @@ class Exchange {
   };
   // Face gradients of the pressure (domain ghosts from the boundary conditions).
   std::array<fluid::Field, 3> pressure_gradient(const fluid::FluidState& air) const;
-  AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const Vec3& x) const;
+  AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const ParcelWeights& w,
+                   size_t i) const;
   Weights cell_weights(const Vec3& x, const fluid::Field& layout) const;
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
   const fluid::IbmFractions* walls_ = nullptr;
@@ -97,6 +116,7 @@ class Exchange {
   // 1 on the boundary faces of the domain's Wall sides (their velocity is prescribed, so
   // drag deposited there would never reach the air), 0 elsewhere.
   std::array<fluid::Field, 3> blocked_;
+  fluid::Field cell_layout_;  // the index layout of cell fields (the face layouts: blocked_)
 
   fluid::MacGrid g_;
   ExchangeParams params_;

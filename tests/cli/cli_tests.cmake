@@ -46,3 +46,8 @@ add_test(NAME cli.escaping_parcels_are_reported
          COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/escape.toml --output ${PROJECT_BINARY_DIR}/cli_out/escape)
 set_tests_properties(cli.escaping_parcels_are_reported PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "more parcel\\(s\\) left the domain.*particles 1[0-9] \\(left the domain: [1-9],")
+# The settled state (t = 0) is saved and a run from it continues bit-identically.
+add_test(NAME cli.settled_state_reruns_bit_identically
+         COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                 -DWORK=${PROJECT_BINARY_DIR}/cli_out/settled -P ${PROJECT_SOURCE_DIR}/tests/cli/settled.cmake)
+set_tests_properties(cli.settled_state_reruns_bit_identically PROPERTIES LABELS cli)

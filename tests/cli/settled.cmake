@@ -1,0 +1,27 @@
+# A run that starts before t = 0 saves settled.bin when it passes t = 0; a run restarted
+# from it ends in exactly the state of the uninterrupted run, and writes the same metrics.
+#   -DCGDEM=... -DCASE=... -DWORK=...
+file(REMOVE_RECURSE ${WORK})
+set(common run ${CASE} --set time.start=-1e-3 --set time.end=1e-3 --set air.dx=1e-3)
+execute_process(COMMAND ${CGDEM} ${common} --output ${WORK}/full OUTPUT_VARIABLE full RESULT_VARIABLE r1)
+if(NOT r1 EQUAL 0 OR NOT EXISTS ${WORK}/full/settled.bin)
+  message(FATAL_ERROR "the run failed or wrote no settled.bin: ${r1}\n${full}")
+endif()
+string(REGEX MATCH "settled state at t = [0-9.e-]+ s saved" saved "${full}")
+file(COPY ${WORK}/full/settled.bin DESTINATION ${WORK}/again)
+execute_process(COMMAND ${CGDEM} ${common} --output ${WORK}/again --restart ${WORK}/again/settled.bin
+                OUTPUT_VARIABLE again RESULT_VARIABLE r2)
+if(NOT r2 EQUAL 0)
+  message(FATAL_ERROR "the restart from settled.bin failed: ${r2}\n${again}")
+endif()
+string(REGEX MATCH "state digest [0-9a-f]+ at t = [0-9.e-]+" d_full "${full}")
+string(REGEX MATCH "state digest [0-9a-f]+ at t = [0-9.e-]+" d_again "${again}")
+message(STATUS "${saved}; uninterrupted: ${d_full}; from settled.bin: ${d_again}")
+if(NOT saved OR NOT d_full OR NOT d_full STREQUAL d_again)
+  message(FATAL_ERROR "the run from settled.bin differs: '${d_full}' vs '${d_again}'")
+endif()
+file(READ ${WORK}/full/metrics.csv m_full)
+file(READ ${WORK}/again/metrics.csv m_again)
+if(NOT m_full STREQUAL m_again)
+  message(FATAL_ERROR "metrics.csv differs:\n${m_full}\nvs\n${m_again}")
+endif()
