@@ -81,6 +81,7 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   endforeach()
 endif()
 
-if(CGDEM_BUILD_BENCH AND EXISTS ${PROJECT_SOURCE_DIR}/bench/CMakeLists.txt)
+# `cgdem bench ...` is part of the command line, so the benchmarks are always built.
+if(EXISTS ${PROJECT_SOURCE_DIR}/bench/CMakeLists.txt)
   add_subdirectory(bench)
 endif()
