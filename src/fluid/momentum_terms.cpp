@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,10 @@ struct Kernel {
   std::array<View, 3> v, E;
   bool advect, visc;
 
-  // Advective flux  M_e q_e  at the upper e-side of face (i, j, k).
-  template <Advection S>
-  double adv(int e, long i, long j, long k) const {
+  // Advective flux  M_e q_e  at the upper e-side of face (i, j, k) (component d = D).
+  template <Advection S, int D, int e>
+  double adv(long i, long j, long k) const {
+    constexpr int d = D;
     const View &ve = v[e], &epe = E[e];
     const long a = ve.at(i, j, k) + ve.step(e), b = a - ve.step(d);
     const double mass = 0.5 * rho * (epe.o[a] * ve.o[a] + epe.o[b] * ve.o[b]);
@@ -51,11 +53,13 @@ struct Kernel {
     const double q = mass >= 0 ? u0 + 0.5 * limited_slope<S>(u0 - um, u1 - u0) : u1 + 0.5 * limited_slope<S>(u1 - u2, u0 - u1);
     return mass * q;
   }
-  // Viscous stress at the upper e-side of face (i, j, k).
-  double stress(int e, long i, long j, long k) const {
+  // Viscous stress at the upper e-side of face (i, j, k) (component d = D).
+  template <int D, int e>
+  double stress(long i, long j, long k) const {
+    constexpr int d = D;
     const long c = ud.at(i, j, k), se = ud.step(e);
     const long ce = ec.at(i, j, k);
-    if (e == d) {
+    if constexpr (e == d) {
       double s = 0;
       for (int f = 0; f < 3; ++f) {
         const long q = v[f].at(i, j, k);
@@ -63,7 +67,7 @@ struct Kernel {
       }
       const double div_u = s * inv_dx;
       return ec.o[ce] * mu * (2 * (ud.o[c + ud.step(d)] - ud.o[c]) * inv_dx - (2.0 / 3.0) * div_u);
-    }
+    } else {
     const long lo = ce - ec.step(d), ee = ec.step(e);
     const double eps_edge = 0.25 * (ec.o[ce] + ec.o[lo] + ec.o[ce + ee] + ec.o[lo + ee]);
     const double dud = (ud.o[c + se] - ud.o[c]) * inv_dx;
@@ -71,10 +75,11 @@ struct Kernel {
     const long q = ve.at(i, j, k) + ve.step(e);
     const double due = (ve.o[q] - ve.o[q - ve.step(d)]) * inv_dx;
     return eps_edge * mu * (dud + due);
+    }
   }
 };
 
-template <Advection S>
+template <Advection S, int D>
 void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
   const int i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0], k1 = r[2][1];
   if (i1 <= i0 || j1 <= j0 || k1 <= k0) return;
@@ -87,26 +92,29 @@ void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
     // Buffers of upper-side fluxes: x along the row (index i - i0 + 1, slot 0 = face i0 - 1),
     // y of the previous row, z of the previous plane.
     std::vector<double> xa(ni + 1), xv(ni + 1), ya(ni), yv(ni), za(ni * nj), zv(ni * nj);
-    auto upper = [&](int e, long i, long j, long k, double& fa, double& fv) {
-      fa = K.advect ? K.adv<S>(e, i, j, k) : 0.0;
-      fv = K.visc ? K.stress(e, i, j, k) : 0.0;
+    auto upper = [&]<int e>(std::integral_constant<int, e>, long i, long j, long k, double& fa, double& fv) {
+      fa = K.advect ? K.template adv<S, D, e>(i, j, k) : 0.0;
+      fv = K.visc ? K.template stress<D, e>(i, j, k) : 0.0;
     };
+    constexpr std::integral_constant<int, 0> X{};
+    constexpr std::integral_constant<int, 1> Y{};
+    constexpr std::integral_constant<int, 2> Z{};
     for (int k = ka; k < kb; ++k) {
       if (k == ka)
         for (long j = j0; j < j1; ++j)
-          for (long i = i0; i < i1; ++i) upper(2, i, j, k - 1, za[(j - j0) * ni + i - i0], zv[(j - j0) * ni + i - i0]);
-      for (long i = i0; i < i1; ++i) upper(1, i, j0 - 1, k, ya[i - i0], yv[i - i0]);
+          for (long i = i0; i < i1; ++i) upper(Z, i, j, k - 1, za[(j - j0) * ni + i - i0], zv[(j - j0) * ni + i - i0]);
+      for (long i = i0; i < i1; ++i) upper(Y, i, j0 - 1, k, ya[i - i0], yv[i - i0]);
       double* out = rhs.data() + rhs.index(0, 0, k);
       for (long j = j0; j < j1; ++j) {
-        for (long i = i0 - 1; i < i1; ++i) upper(0, i, j, k, xa[i - i0 + 1], xv[i - i0 + 1]);
+        for (long i = i0 - 1; i < i1; ++i) upper(X, i, j, k, xa[i - i0 + 1], xv[i - i0 + 1]);
         double* ro = out + rhs.stride(1) * j;
         double* zar = za.data() + (j - j0) * ni;
         double* zvr = zv.data() + (j - j0) * ni;
         for (long i = i0; i < i1; ++i) {
           const long q = i - i0;
           double fya, fyv, fza, fzv;
-          upper(1, i, j, k, fya, fyv);
-          upper(2, i, j, k, fza, fzv);
+          upper(Y, i, j, k, fya, fyv);
+          upper(Z, i, j, k, fza, fzv);
           if (K.advect) {
             double div = 0;
             div += xa[q + 1] - xa[q];
@@ -155,11 +163,18 @@ void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, 
            {view_or(eps_face[0]), view_or(eps_face[1]), view_or(eps_face[2])},
            advect,
            visc};
+  // The component d and the flux direction e are template arguments: the strides and the
+  // e == d branch are resolved at compile time (same arithmetic).
+  auto run = [&]<Advection S>() {
+    if (d == 0) sweep<S, 0>(K, range, rhs);
+    else if (d == 1) sweep<S, 1>(K, range, rhs);
+    else sweep<S, 2>(K, range, rhs);
+  };
   switch (scheme) {
-    case Advection::Upwind: sweep<Advection::Upwind>(K, range, rhs); break;
-    case Advection::Central: sweep<Advection::Central>(K, range, rhs); break;
-    case Advection::VanLeer: sweep<Advection::VanLeer>(K, range, rhs); break;
-    case Advection::MC: sweep<Advection::MC>(K, range, rhs); break;
+    case Advection::Upwind: run.template operator()<Advection::Upwind>(); break;
+    case Advection::Central: run.template operator()<Advection::Central>(); break;
+    case Advection::VanLeer: run.template operator()<Advection::VanLeer>(); break;
+    case Advection::MC: run.template operator()<Advection::MC>(); break;
   }
 }
 
