@@ -39,6 +39,11 @@ struct DemParams {
 // Totals over all particles (and those removed), summed in a fixed order.
 struct EnergyBudget {
   double kinetic_translational = 0, kinetic_rotational = 0, potential = 0;
+  // Rotational energy of the l^3 originals the parcels stand for, each spinning at the
+  // parcel's omega (the paper's assumption): l^3 * 1/2 I_O w^2 = (1/2 I w^2) / l^2 by
+  // eq. (5), I = l^5 I_O. Not part of balance(): the parcel's own 1/2 I w^2 is what the
+  // contact torques work on.
+  double kinetic_rotational_originals = 0;
   double elastic = 0;              // stored in contact springs (normal + tangential)
   double dissipated_damping = 0;   // by the normal dashpots, since t = start
   double dissipated_friction = 0;  // tangential dashpot and sliding

@@ -1,6 +1,8 @@
 // Energy budget of the particle system (serial, fixed order: thread-count independent).
 //   E_kin = sum 1/2 m v^2 + 1/2 I w^2,   E_pot = - sum m g . x
 //   E_el  = sum over contacts 1/2 l^3 k (delta^2 + |xi|^2)
+//   E_rot,O = sum 1/2 (I / l^2) w^2: the l^3 originals of a parcel, each with I_O = I / l^5
+//             (eq. 5) and the parcel's w, hold l^3 I_O w^2 / 2 = (I w^2 / 2) / l^2.
 #include "solvers/dem/dem_solver.hpp"
 
 namespace cgdem {
@@ -12,6 +14,8 @@ EnergyBudget DemSolver::energy() const {
     const double m = 1.0 / p.inv_mass[i], I = 1.0 / p.inv_inertia[i];
     b.kinetic_translational += 0.5 * m * norm2(p.v[i]);
     b.kinetic_rotational += 0.5 * I * norm2(p.omega[i]);
+    const double l = species_[p.species[i]].ratio;
+    b.kinetic_rotational_originals += 0.5 * I / (l * l) * norm2(p.omega[i]);  // eq. (5): l^3 I_O = I / l^2
     b.potential -= m * dot(params_.gravity, p.x[i]);
     b.momentum += m * p.v[i];
     b.mass += m;
