@@ -1,17 +1,30 @@
-// `cgdem spectrum`: placeholder registration, being built (issue #5).
+// `cgdem spectrum RUN_DIR [RUN_DIR ...]`: Welch spectra of the cell pressures of one or
+// several runs (overlaid), their coherence and dominant frequencies (spectrum_report.hpp,
+// docs/spectra.md).
 #pragma once
 #include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "scaling/spectrum_report.hpp"
 
 namespace cgdem::scaling {
 
 class SpectrumCommand {
  public:
   explicit SpectrumCommand(CLI::App& app);  // adds the subcommand and its options to app
+  SpectrumCommand(const SpectrumCommand&) = delete;  // CLI11 holds pointers to the members
+  SpectrumCommand& operator=(const SpectrumCommand&) = delete;
   bool selected() const { return sub_->parsed(); }
   int run() const;  // after parsing; throws cgdem::Error on bad input
 
  private:
   CLI::App* sub_;
+  std::vector<std::string> runs_, labels_, cells_;
+  std::string window_ = "hann", detrend_ = "mean", segment_, output_;
+  double overlap_ = 0.5, from_ = 0, to_ = 0, dt_ = 0;
+  int peaks_ = 3;
+  bool no_plot_ = false;
 };
 
 }  // namespace cgdem::scaling

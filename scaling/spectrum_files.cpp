@@ -1,0 +1,173 @@
+// write_spectrum_outputs: the CSV files, the Markdown report and the optional PNG
+// (formats in spectrum_report.hpp). Every file goes through io::write_file_atomic; the
+// plot script writes its PNGs to a temporary name and renames them.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/revision.hpp"
+#include "io/atomic_file.hpp"
+#include "scaling/spectrum_report.hpp"
+
+namespace cgdem::scaling {
+namespace {
+
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "nan"; }
+
+std::string header_comment(const SpectrumAnalysis& a) {
+  const WelchParams& p = a.params;
+  std::string segs;
+  for (const auto& r : a.runs) segs += fmt::format("{}{}={}", segs.empty() ? "" : ";", r.label, r.segments);
+  return fmt::format(
+      "# cgdem {} spectrum: fs {} Hz, df {} Hz, segment {} samples, overlap {}, window {}, detrend {}; one-sided, "
+      "integral over f = variance; segments {}\n",
+      kGitRevision, num(p.fs), num(p.fs / p.segment), p.segment, p.overlap, to_string(p.window), to_string(p.detrend),
+      segs);
+}
+
+std::string psd_csv(const SpectrumAnalysis& a) {
+  std::string s = header_comment(a) + "f_Hz";
+  for (const auto& r : a.runs)
+    for (const auto& c : r.cells) s += fmt::format(",{}:{}", r.label, c);
+  s += '\n';
+  for (size_t m = 0; m < a.f.size(); ++m) {
+    s += num(a.f[m]);
+    for (const auto& r : a.runs)
+      for (const auto& p : r.psd) s += fmt::format(",{}", num(p[m]));
+    s += '\n';
+  }
+  return s;
+}
+
+std::string coherence_csv(const SpectrumAnalysis& a) {
+  std::string s = header_comment(a) + "f_Hz";
+  for (const auto& r : a.runs)
+    for (const auto& [i, j] : r.pairs) s += fmt::format(",{}:{}-{}", r.label, r.cells[i], r.cells[j]);
+  s += '\n';
+  for (size_t m = 0; m < a.f.size(); ++m) {
+    s += num(a.f[m]);
+    for (const auto& r : a.runs)
+      for (const auto& c : r.coherence) s += fmt::format(",{}", num(c[m]));
+    s += '\n';
+  }
+  return s;
+}
+
+std::string peaks_csv(const SpectrumAnalysis& a) {
+  std::string s = header_comment(a) + "run,cell,rank,f_Hz,f_interp_Hz,psd_Pa2_per_Hz,band_power_Pa2,variance_fraction\n";
+  for (const auto& r : a.runs)
+    for (size_t c = 0; c < r.cells.size(); ++c)
+      for (size_t k = 0; k < r.peaks[c].size(); ++k) {
+        const Peak& p = r.peaks[c][k];
+        s += fmt::format("{},{},{},{},{},{},{},{}\n", r.label, r.cells[c], k + 1, num(p.f), num(p.f_interp), num(p.psd),
+                         num(p.band_power), num(r.variance[c] > 0 ? p.band_power / r.variance[c] : NAN));
+      }
+  return s;
+}
+
+std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
+  const WelchParams& p = a.params;
+  const WindowFactors& w = a.factors;
+  const SpectrumSettings& s = a.settings;
+  const double df = p.fs / p.segment;
+  std::string md = fmt::format("# Pressure spectra\n\ncgdem {}. Welch estimate (docs/spectra.md).\n\n", kGitRevision);
+  md += "| parameter | value |\n|---|---|\n";
+  md += fmt::format("| time range (--from, --to) | {} to {} |\n", s.from ? num(*s.from) + " s" : "first sample",
+                    s.to ? num(*s.to) + " s" : "last sample");
+  md += fmt::format("| sampling | fs = {} Hz (dt = {} s{}) |\n", num(p.fs), num(1 / p.fs),
+                    s.dt > 0 ? ", linearly resampled" : "");
+  md += fmt::format("| segment | {} samples = {} s |\n", p.segment, num(p.segment / p.fs));
+  md += fmt::format("| overlap | {} samples ({:.0f} %) |\n", p.overlap, 100.0 * p.overlap / p.segment);
+  md += fmt::format("| frequency resolution | df = fs / L = {} Hz; f up to {} Hz |\n", num(df), num(a.f.back()));
+  md += fmt::format("| window | {} (periodic) |\n", to_string(p.window));
+  md += fmt::format("| detrending of each segment | {} |\n", to_string(p.detrend));
+  md += fmt::format(
+      "| window correction | PSD divided by fs sum w^2 (power gain sum w^2 / L = {:.4f}): the integral of the PSD "
+      "is the variance. Coherent gain sum w / L = {:.4f}; ENBW = {:.4f} bins = {} Hz: a peak's bin reads "
+      "A^2/2 / ENBW for a sine of amplitude A, its band power A^2/2 |\n",
+      w.power_gain, w.coherent_gain, w.enbw_bins, num(w.enbw_hz));
+  md += "\n| run | source | samples | t first (s) | t last (s) | segments K | coherence bias ~1/K |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : a.runs)
+    md += fmt::format("| {} | `{}` | {} | {} | {} | {} | {:.3f} |\n", r.label, r.source, r.samples, num(r.t_first),
+                      num(r.t_last), r.segments, 1.0 / r.segments);
+  md += fmt::format("\n## Dominant frequencies\n\nBand power: sum of PSD df over the {} bins around the maximum.\n\n",
+                    2 * main_lobe_half_width(p.window) + 1);
+  md += "| run | cell | rank | f (Hz) | f interpolated (Hz) | PSD (Pa^2/Hz) | band power (Pa^2) | of the variance | variance (Pa^2) |\n";
+  md += "|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : a.runs)
+    for (size_t c = 0; c < r.cells.size(); ++c)
+      for (size_t k = 0; k < r.peaks[c].size(); ++k) {
+        const Peak& pk = r.peaks[c][k];
+        md += fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {:.4g} | {:.4g} | {:.1f} % | {:.4g} |\n", r.label,
+                          r.cells[c], k + 1, pk.f, pk.f_interp, pk.psd, pk.band_power,
+                          r.variance[c] > 0 ? 100 * pk.band_power / r.variance[c] : 0.0, r.variance[c]);
+      }
+  md += "\n## Coherence\n\n| run | cells | largest | at f (Hz) | mean over f > 0 |\n|---|---|---|---|---|\n";
+  for (const auto& r : a.runs)
+    for (size_t q = 0; q < r.pairs.size(); ++q) {
+      const auto& c = r.coherence[q];
+      size_t best = 1;
+      double mean = 0;
+      int n = 0;
+      for (size_t m = 1; m < c.size(); ++m) {
+        if (!std::isfinite(c[m])) continue;
+        if (!std::isfinite(c[best]) || c[m] > c[best]) best = m;
+        mean += c[m];
+        ++n;
+      }
+      md += fmt::format("| {} | {}-{} | {:.3f} | {:.6g} | {:.3f} |\n", r.label, r.cells[r.pairs[q].first],
+                        r.cells[r.pairs[q].second], c[best], a.f[best], n ? mean / n : NAN);
+    }
+  md += fmt::format("\nFiles: `psd.csv`, `coherence.csv`, `peaks.csv`{}\n", png_note);
+  return md;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// python3 with matplotlib: $CGDEM_PYTHON, python3 on the PATH, or the system's.
+std::string find_python() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("CGDEM_PYTHON")) candidates.emplace_back(env);
+  candidates.emplace_back("python3");
+  candidates.emplace_back("/usr/bin/python3");
+  for (const auto& py : candidates)
+    if (std::system((shell_quote(py) + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0) return py;
+  return "";
+}
+
+// Runs scaling/plot_spectrum.py on `dir`; returns the note for the report and the log.
+std::string plot(const std::string& dir) {
+  const std::filesystem::path script = std::filesystem::path(__FILE__).parent_path() / "plot_spectrum.py";
+  if (!std::filesystem::exists(script)) return fmt::format("no PNG: plot script {} not found", script.string());
+  const std::string py = find_python();
+  if (py.empty()) return "no PNG: python3 with matplotlib not found (apt-get install python3-matplotlib)";
+  const std::string cmd = fmt::format("{} {} {}", shell_quote(py), shell_quote(script.string()), shell_quote(dir));
+  if (std::system(cmd.c_str()) != 0) return fmt::format("no PNG: {} failed", cmd);
+  return "";
+}
+
+}  // namespace
+
+std::string write_spectrum_outputs(const SpectrumAnalysis& a, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("--output: cannot create '{}': {}", dir, ec.message()));
+  const auto path = [&](const char* name) { return (std::filesystem::path(dir) / name).string(); };
+  io::write_file_atomic(path("psd.csv"), psd_csv(a));
+  io::write_file_atomic(path("coherence.csv"), coherence_csv(a));
+  io::write_file_atomic(path("peaks.csv"), peaks_csv(a));
+  const std::string note = a.settings.plot ? plot(dir) : "no PNG: plotting switched off";
+  const std::string png = note.empty() ? ", `psd.png`, `coherence.png`.\n\n![PSD](psd.png)\n\n![coherence](coherence.png)"
+                                       : fmt::format(" ({}).", note);
+  io::write_file_atomic(path("spectrum.md"), markdown(a, png));
+  return note.empty() ? fmt::format("wrote {}/psd.png, coherence.png", dir) : note;
+}
+
+}  // namespace cgdem::scaling
