@@ -84,7 +84,7 @@ def plot_psd(folder):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
     axes[-1, 0].set_xlabel("f (Hz)")
-    fig.suptitle(comment.split(";")[0].lstrip("# "), fontsize=8)
+    fig.suptitle(comment.split(";")[0].split("spectrum: ", 1)[-1], fontsize=8)
     fig.tight_layout()
     save(fig, os.path.join(folder, "psd.png"))
 
