@@ -4,7 +4,8 @@ set -euo pipefail
 pkgs=(build-essential cmake git pkg-config
       libsundials-dev libsuitesparse-dev libeigen3-dev libhdf5-dev libfftw3-dev
       libgtest-dev libtoml11-dev libcli11-dev libfmt-dev
-      libopenblas0-pthread)   # OpenBLAS: reference BLAS makes CHOLMOD ~12x slower
+      libopenblas0-pthread    # OpenBLAS: reference BLAS makes CHOLMOD ~12x slower
+      python3-matplotlib python3-numpy python3-h5py)  # plots of the analysis commands (optional at run time)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
