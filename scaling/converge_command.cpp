@@ -20,12 +20,6 @@
 #include "io/metrics.hpp"
 #include "scaling/richardson.hpp"
 
-namespace cgdem::app {
-// Defined in src/app/run_command.cpp beside run_case_file (its declaration belongs in
-// run_command.hpp): the config.resolved.toml body a run of `r` would write, nothing run.
-std::string resolve_case_file(const RunRequest& r);
-}  // namespace cgdem::app
-
 namespace cgdem::scaling {
 
 namespace {

@@ -17,4 +17,8 @@ struct RunRequest {
 // RunError when the run has to stop.
 int run_case_file(const RunRequest& r);
 
+// The configuration body run_case_file would write to config.resolved.toml (every key
+// validated, nothing run): how the analysis commands recognise a finished run.
+std::string resolve_case_file(const RunRequest& r);
+
 }  // namespace cgdem::app
