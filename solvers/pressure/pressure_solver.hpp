@@ -39,6 +39,10 @@ struct SolverOptions {
   // "cg":      unpreconditioned SUNDIALS PCG (reference)
   // "cholmod": sparse Cholesky of the full operator (direct reference; slow, large)
   std::string method = "pcg-fft";
+  // The Krylov engine of the preconditioned methods: "sundials" (SUNDIALS' PCG, the
+  // default) or "fused" (the same recurrence in four memory passes per iteration,
+  // fused_pcg.hpp; same iterates to ~1e-13). "cg" always runs on SUNDIALS.
+  std::string krylov = "sundials";
   double rel_tol = 1e-8;   // ||r|| <= rel_tol ||b||
   int max_iter = 500;
 };

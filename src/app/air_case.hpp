@@ -16,6 +16,7 @@
 //   feedback = true           # false: one-way coupling (the air ignores the parcels)
 //   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha
 //   [air.pressure]  method = "pcg-mg2" (fastest on the die-filling grid: docs/pressure.md),
+//                   krylov = "sundials" (SUNDIALS PCG; "fused": the same recurrence, fewer passes),
 //                   tolerance = 1e-8, max_iterations = 500
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
 //                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa)

@@ -50,7 +50,6 @@ Table read_table(const std::string& path) {
 
 io::Metrics run_metrics(const std::string& dir, const DemSolver& dem, bool with_diagnostics,
                         std::optional<std::pair<double, double>> front_impact) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   const EnergyBudget e = dem.energy();
   io::Metrics m{{"end_time_s", dem.time()},
                 {"particles", double(dem.particles().size())},
