@@ -37,8 +37,9 @@ void DemSolver::load(io::ArchiveReader& r) {
   const size_t n = p_.x.size();
   if (p_.id.size() != n || p_.v.size() != n || nl_.offset.size() != n + 1)
     throw Error("checkpoint: inconsistent particle or neighbour-list sizes");
-  nl_.f_partner.assign(nl_.partner.size(), Vec3{});
-  nl_.t_partner.assign(nl_.partner.size(), Vec3{});
+  if (nl_.hist.size() != nl_.partner.size() || nl_.rev_entry.size() != nl_.partner.size())
+    throw Error("checkpoint: inconsistent neighbour-list sizes");
+  nl_.derive();
   for (int s : p_.species)
     if (s < 0 || s >= static_cast<int>(species_.size())) throw Error("checkpoint: unknown species index");
   frame_ = scene_.at(t_);

@@ -163,8 +163,6 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   partner.resize(ne);
   image.resize(ne);
   hist.assign(ne, contact::History{});
-  f_partner.assign(ne, Vec3{});
-  t_partner.assign(ne, Vec3{});
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < np; ++i) {
     std::vector<std::pair<int, int>> found;
@@ -193,6 +191,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
     std::vector<int> pos(rev_offset.begin(), rev_offset.end() - 1);
     for (int e = 0; e < ne; ++e) rev_entry[pos[partner[e]]++] = e;
   }
+  derive();
 
   // 4. Wall candidates: parts whose surface is within r + skin of the particle.
   const int nparts = static_cast<int>(walls.scene ? walls.scene->parts().size() : 0);
@@ -221,6 +220,43 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
 
   x_at_build = p.x;
   body_offset_at_build = walls.offset;
+}
+
+void NeighborList::derive() {
+  const size_t ne = partner.size();
+  live.resize(ne);
+  for (size_t e = 0; e < ne; ++e) live[e] = !hist[e].empty();
+  rev_pos.resize(ne);
+  for (size_t k = 0; k < rev_entry.size(); ++k) {
+    if (rev_entry[k] < 0 || static_cast<size_t>(rev_entry[k]) >= ne)
+      throw Error("neighbour list: reverse index out of range (corrupt checkpoint?)");
+    rev_pos[rev_entry[k]] = static_cast<int>(k);
+  }
+  f_partner.assign(ne, Vec3{});
+  t_partner.assign(ne, Vec3{});
+  const int np = static_cast<int>(offset.size()) - 1;
+  first_owner.assign(np, -1);
+  last_owner.assign(np, -1);
+  for (int i = 0; i < np; ++i)
+    for (int e = offset[i]; e < offset[i + 1]; ++e) {
+      const int j = partner[e];
+      if (first_owner[j] < 0) first_owner[j] = i;
+      last_owner[j] = i;
+    }
+  f_acc.assign(np, Vec3{});
+  t_acc.assign(np, Vec3{});
+  direct_team = 0;
+}
+
+bool NeighborList::needs_rebuild(double max_move2, size_t n, const geometry::Scene::Frame& walls) const {
+  if (x_at_build.size() != n) return true;
+  double wall_move = 0;
+  for (size_t b = 0; b < walls.offset.size() && b < body_offset_at_build.size(); ++b)
+    wall_move = std::max(wall_move, norm(walls.offset[b] - body_offset_at_build[b]));
+  const double wall_limit = 0.5 * skin - wall_move;
+  if (wall_limit <= 0) return true;
+  // As below: some particle moved more than skin/2, or more than the wall limit.
+  return max_move2 > 0.25 * skin * skin || max_move2 > wall_limit * wall_limit;
 }
 
 bool NeighborList::needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const {

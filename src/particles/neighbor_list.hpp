@@ -43,10 +43,24 @@ struct NeighborList {
   std::vector<uint8_t> image;     // partner image: its position is x[partner] + shift[image]
   std::array<Vec3, 27> shift{};   // image shifts (index 13: none)
   std::vector<contact::History> hist;  // contact history, in the owner's frame
-  std::vector<Vec3> f_partner;    // force pass output: force on the partner (= - on owner)
-  std::vector<Vec3> t_partner;    // force pass output: n x F_t (torque on the partner / -r_j)
-  // Reverse index: the entries whose partner is j are rev_entry[rev_offset[j] .. rev_offset[j+1]-1].
-  std::vector<int> rev_offset, rev_entry;
+  // 1 when the pair was in contact at the last force pass (or, after a build or a load,
+  // when its history is not empty); 0 implies an empty history. Derived (not saved).
+  std::vector<uint8_t> live;
+  // Reverse index: the entries whose partner is j are rev_entry[rev_offset[j] .. rev_offset[j+1]-1],
+  // in increasing order; entry e sits at position rev_pos[e] (derived, not saved).
+  std::vector<int> rev_offset, rev_entry, rev_pos;
+  // Force pass output per reverse position rev_pos[e]: the force on the partner (= - on
+  // the owner) and n x F_t (torque on the partner / -r_j); zero for pairs out of contact.
+  std::vector<Vec3> f_partner, t_partner;
+  // Per particle j: the lowest and highest owner among the entries whose partner is j
+  // (-1: none). Derived.
+  std::vector<int> first_owner, last_owner;
+  // Force pass scratch (see compute_forces.cpp): per particle, 1 when all its entries are
+  // evaluated by one thread (its partner shares are then summed directly into f_acc,
+  // t_acc, zero between passes), for a team of direct_team threads (0: not set).
+  std::vector<uint8_t> direct;
+  std::vector<Vec3> f_acc, t_acc;
+  int direct_team = 0;
   // Particle-wall candidates (CSR over wall parts).
   std::vector<int> wall_offset, wall_part;
   std::vector<contact::History> wall_hist;
@@ -57,8 +71,14 @@ struct NeighborList {
 
   // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over.
   void build(Particles& p, const geometry::Scene::Frame& walls);
+  // Recomputes live, rev_pos and clears the force pass output (after build() or after
+  // the saved fields were loaded).
+  void derive();
   // True when the lists may have become incomplete.
   bool needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const;
+  // The same test, given max |x_i - x_i(at build)|^2 over the particles (computed by the
+  // caller while it moved them).
+  bool needs_rebuild(double max_move2, size_t n, const geometry::Scene::Frame& walls) const;
   size_t pair_entries() const { return partner.size(); }
   bool valid_for(const Particles& p) const { return offset.size() == p.size() + 1; }
   // The partner's position as seen from the owner (periodic image applied).
