@@ -101,8 +101,6 @@ class DemSolver {
 
  private:
   void kick(double half_dt);
-  void drift();
-  void rebuild_if_needed();
   void compute_forces();
   void remove_escaped();
 
