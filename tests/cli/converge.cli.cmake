@@ -47,8 +47,8 @@ foreach(bad
     set(case ${_cv}/taylor_green_dt.toml)
   endif()
   add_test(NAME cli.converge.bad_input.${name}
-           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${case} "-DARGS=${args};${metric_args}"
+           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${case} -DCOMMAND=converge "-DEXTRA=${args};${metric_args};--threads;1"
                    "-DEXPECT=${expect}" -DWORK=${PROJECT_BINARY_DIR}/cli_out/converge_bad_${name}
-                   -P ${_cv}/expect_error.cmake)
+                   -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
   set_tests_properties(cli.converge.bad_input.${name} PROPERTIES LABELS "cli;scaling")
 endforeach()

@@ -18,10 +18,10 @@ add_test(NAME cli.scale_bad_ratios
          COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${scale_case}
                  "-DEXPECT=--ratios: must contain 1" "-DEXTRA=--ratios;2,3"
                  -DWORK=${PROJECT_BINARY_DIR}/cli_out/scale_bad
-                 -P ${PROJECT_SOURCE_DIR}/tests/cli/scale/expect_scale_error.cmake)
+                 -DCOMMAND=scale "-DFORBID_OUT=running \\(" -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
 add_test(NAME cli.scale_bad_threshold
          COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${scale_case}
                  "-DEXPECT=--threshold 'energie=0.1': unknown name 'energie'" "-DEXTRA=--threshold;energie=0.1"
                  -DWORK=${PROJECT_BINARY_DIR}/cli_out/scale_bad
-                 -P ${PROJECT_SOURCE_DIR}/tests/cli/scale/expect_scale_error.cmake)
+                 -DCOMMAND=scale "-DFORBID_OUT=running \\(" -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
 set_tests_properties(cli.scale_bad_ratios cli.scale_bad_threshold PROPERTIES LABELS "cli;scaling")
