@@ -45,8 +45,13 @@ class FluidSolver {
 
   // Largest stable step: min(dt_max, cfl dx / sum_d max|u_d|, visc_safety dx^2 rho / (6 mu)).
   double stable_dt(const FluidState& s) const;
-  // max over cells of |(eps - eps_old)/dt + div(E u)| for the state as it is [1/s].
-  double max_divergence(const FluidState& s, double dt) const;
+  // max over cells of |(eps - eps_old)/dt + div(E u)| for the state as it is [1/s]: over the
+  // cells with some fluid (alpha_cell < 1, where the pressure equation imposes it) and over
+  // the cells entirely inside walls (alpha_cell = 1, where nothing imposes it).
+  struct Divergence {
+    double fluid = 0, walls = 0;
+  };
+  Divergence divergence(const FluidState& s, double dt) const;
 
   const FluidParams& params() const { return params_; }
   const IbmFractions& ibm() const { return ibm_; }

@@ -14,7 +14,7 @@ namespace cgdem::app {
 namespace {
 
 constexpr uint64_t kMagic = 0x74706b636d656467ULL;  // "gdemckpt"
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: RunCounters gained max_divergence_walls
 
 void put_field(io::ArchiveWriter& w, const fluid::Field& f) {
   w.put(f.extent());
@@ -69,7 +69,9 @@ std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::Flui
                             RunCounters& c) {
   io::ArchiveReader r(read_all(path), path);
   if (r.get<uint64_t>() != kMagic) throw Error(path + " is not a cgdem checkpoint");
-  if (r.get<uint32_t>() != kVersion) throw Error(path + ": checkpoint format version differs from this build's");
+  const uint32_t version = r.get<uint32_t>();
+  if (version != kVersion && version != 1)
+    throw Error(fmt::format("{}: checkpoint format version {} (this build reads 1 and {})", path, version, kVersion));
   const std::string revision = r.get_string();
   std::string config = r.get_string();
   if (revision != kGitRevision)
@@ -93,7 +95,18 @@ std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::Flui
   }
   diag.load(r);
   r.tag("counters");
-  r.get(c);
+  if (version == 1) {  // before max_divergence_walls
+    struct V1 {
+      long fluid_steps, pressure_iterations, unconverged;
+      double max_divergence;
+    } old{};
+    r.get(old);
+    c = RunCounters{};
+    c.fluid_steps = old.fluid_steps, c.pressure_iterations = old.pressure_iterations, c.unconverged = old.unconverged;
+    c.max_divergence = old.max_divergence;  // then over every cell, walls included
+  } else {
+    r.get(c);
+  }
   r.tag("end");
   return config;
 }

@@ -17,7 +17,8 @@ namespace cgdem::app {
 
 struct RunCounters {
   long fluid_steps = 0, pressure_iterations = 0, unconverged = 0;
-  double max_divergence = 0;
+  double max_divergence = 0;        // max |continuity residual| over cells with fluid [1/s]
+  double max_divergence_walls = 0;  // the same over cells entirely inside walls (not imposed)
 };
 
 void write_checkpoint(const std::string& path, const std::string& config, const DemSolver& dem,

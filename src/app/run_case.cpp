@@ -238,6 +238,11 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   }
   const bool tty = isatty(STDOUT_FILENO);
   const double span = c.t_end - c.t_start, tiny = 1e-9 * c.dem.dt;
+  const double t_first = dem->time();  // start of this run (later than t_start after a restart)
+  // The run loop's own phases (everything that is neither DEM, coupling nor air).
+  PhaseTimers out_timers;
+  const int t_observe = out_timers.id("die diagnostics"), t_series = out_timers.id("CSV series");
+  const int t_snap = out_timers.id("snapshots"), t_ckpt = out_timers.id("checkpoints");
   // Output times are multiples of the intervals counted from t_start (also after a restart).
   auto next_after = [&](double interval) {
     return c.t_start + interval * (std::floor((dem->time() - c.t_start) / interval + 1e-9) + 1);
@@ -260,37 +265,47 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       ++counters.fluid_steps;
       counters.pressure_iterations += st.fluid.pressure_iterations;
       counters.max_divergence = std::max(counters.max_divergence, st.fluid.max_divergence);
+      counters.max_divergence_walls = std::max(counters.max_divergence_walls, st.fluid.max_divergence_walls);
       if (!st.fluid.pressure_converged && counters.unconverged++ == 0)
         fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
                    "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
+      auto ts = out_timers.scope(t_observe);
       diag.observe(dem->time(), dem->particles());
     } else {
       dem->step();
       particle_steps += static_cast<long>(dem->particles().size());
-      if (dem->steps() % observe_every == 0) diag.observe(dem->time(), dem->particles());
+      if (dem->steps() % observe_every == 0) {
+        auto ts = out_timers.scope(t_observe);
+        diag.observe(dem->time(), dem->particles());
+      }
     }
     const double t = dem->time();
     const bool last = t >= c.t_end - tiny;
     const bool snap = t >= next_snap - tiny || last;
     if (t >= next_energy - tiny || snap) {
+      auto ts = out_timers.scope(t_series);
       check_health();
       write_energy();
       while (next_energy <= t + tiny) next_energy += c.output.energy_interval;
     }
     if (diag_csv && (t >= next_diag - tiny || last)) {
+      auto ts = out_timers.scope(t_series);
       write_diagnostics();
       while (next_diag <= t + tiny) next_diag += diag_spec.interval;
     }
     if (snap) {
+      auto ts = out_timers.scope(t_snap);
       write_snapshot();
       while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
     }
     if (t >= next_checkpoint - tiny || last) {
+      auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint_now();
       while (next_checkpoint <= t + tiny) next_checkpoint += c.output.checkpoint_interval;
     }
     if (settled_pending && t >= -tiny) {
+      auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint((out / "settled.bin").string(), info.resolved_config, *dem, with_air ? &air : nullptr, diag,
                        counters);
@@ -302,8 +317,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     if ((tty && wall - last_progress > 0.5) || (!tty && wall - last_progress > c.output.progress_interval) || last) {
       last_progress = wall;
       const double frac = (t - c.t_start) / span, rate = particle_steps / std::max(wall, 1e-9);
+      // ETA from this run's own pace (a restart's progress began at t_first, not t_start).
+      const double done = (t - t_first) / std::max(c.t_end - t_first, 1e-300);
       std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t, 100 * frac,
-                                     rate, wall * (1 - frac) / std::max(frac, 1e-9));
+                                     rate, wall * (1 - done) / std::max(done, 1e-9));
       if (tty) fmt::print("\r{}   ", line), std::fflush(stdout);
       else fmt::print("{}\n", line), std::fflush(stdout);  // batch logs see progress as it happens
     }
@@ -327,10 +344,17 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     fmt::print("{}", coupled->timers().table("per-phase time (coupling)"));
     fmt::print("{}", fluid->timers().table("per-phase time (air)"));
     fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
-               "{:.2e} 1/s\n",
+               "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",
                counters.fluid_steps,
                counters.fluid_steps ? double(counters.pressure_iterations) / counters.fluid_steps : 0.0,
-               counters.unconverged, counters.max_divergence);
+               counters.unconverged, counters.max_divergence, counters.max_divergence_walls);
+  }
+  fmt::print("{}", out_timers.table("per-phase time (output)"));
+  {
+    const double t_dem = dem->timers().total(), t_out = out_timers.total();
+    const double t_cpl = with_air ? coupled->timers().total() : 0.0, t_air = with_air ? fluid->timers().total() : 0.0;
+    fmt::print("wall {:.1f} s = DEM {:.1f} + coupling {:.1f} + air {:.1f} + output {:.1f} + other {:.1f} s\n", wall,
+               t_dem, t_cpl, t_air, t_out, wall - t_dem - t_cpl - t_air - t_out);
   }
   fmt::print("DEM steps {}, wall {:.1f} s, {:.3g} particle-steps/s, neighbour-list builds {}\n", dem->steps(), wall,
              particle_steps / std::max(wall, 1e-9), dem->neighbor_builds());

@@ -65,7 +65,9 @@ struct StepStats {
   int stage_iterations = 0;      // of them, in the stage-1 solve (time_order 2)
   double pressure_residual = 0;  // relative residual of the last solve
   bool pressure_converged = true;
-  double max_divergence = 0;     // max_c |d(eps)/dt + div(eps u)| [1/s] after the step
+  double max_divergence = 0;     // max_c |d(eps)/dt + div(eps u)| [1/s] after the step, over
+                                 // the cells with fluid (alpha_cell < 1)
+  double max_divergence_walls = 0;  // the same over the cells entirely inside walls (not imposed)
   double cfl = 0;                // sum_d max|u_d| dt / dx after the step
   bool ibm_updated = false;
 };
