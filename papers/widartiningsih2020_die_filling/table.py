@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+"""Prints a Markdown table of our numbers beside the paper's (physics.md section 5) for
+the given run folders, for README.md.
+
+Reads, per run: config.resolved.toml, metrics.csv, diagnostics.csv and, when it finds one,
+the run's log (RUN_DIR/../logs/<name>.log as run.sh writes it, or RUN_DIR.log) for the
+wall time (cgdem's "wall ... s" line), the simulated span it covers (from time.start, or
+from the time of a --restart) and the threads (the --threads of the logged command).
+"""
+import argparse
+import os
+import re
+
+import numpy as np
+
+import figlib as fl
+
+
+def find_log(run):
+    name = os.path.basename(run.dir)
+    for path in (os.path.join(os.path.dirname(run.dir), "logs", name + ".log"), run.dir + ".log"):
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def log_facts(path):
+    facts = {"wall_s": None, "threads": None, "revision": None, "restart_t": None}
+    if not path:
+        return facts
+    with open(path, errors="replace") as f:
+        text = f.read()
+    m = re.findall(r"DEM steps \d+, wall ([0-9.]+) s", text)
+    facts["wall_s"] = float(m[-1]) if m else None
+    m = re.findall(r"--threads (\d+)", text)
+    facts["threads"] = int(m[-1]) if m else None
+    m = re.search(r"^cgdem (\S+):", text, re.M)
+    facts["revision"] = m.group(1) if m else None
+    m = re.findall(r"restarting from \S+ at t = (\S+) s", text)
+    facts["restart_t"] = float(m[-1]) if m else None
+    return facts
+
+
+def fmt(v, f="{:.3f}", unit=""):
+    return "n/a" if v is None or not np.isfinite(v) else f.format(v) + unit
+
+
+def column(run):
+    m = run.metrics()
+    d = run.diagnostics()
+    paper = fl.PAPER[run.die_type]
+    tp = paper["peak_time"]
+    t, mass = d["t"], d["mass_in_die"]
+    final = float(mass[-1])
+    full = t[np.argmax(mass >= 0.99 * final)] if final > 0 else np.nan
+    at_tp = float(np.interp(tp, t, mass)) if t[0] <= tp <= t[-1] else np.nan
+    ours = {
+        "front": fmt(m.get("front_time_s"), "{:.4f}", " s"),
+        "impact": fmt(m.get("mean_impact_velocity_m_s"), "{:.3f}", " m/s"),
+        "rate": (fmt(m.get("transfer_rate_peak_kg_s", np.nan) * 1e3, "{:.1f}", " g/s") + " at "
+                 + fmt(m.get("transfer_rate_peak_time_s"), "{:.3f}", " s")),
+        "full": fmt(full, "{:.3f}", " s"),
+        "at_tp": fmt(at_tp * 1e3, "{:.3f}", " g") + (f" ({at_tp / final:.0%} of the final)" if final > 0 else ""),
+        "fill": fmt(final * 1e3, "{:.3f}", " g") + " at " + fmt(float(t[-1]), "{:.2f}", " s"),
+    }
+    for c in "ABC":
+        ours["p_" + c] = (fmt(m.get(f"p_{c}_peak_Pa"), "{:.1f}", " Pa") + " at "
+                          + fmt(m.get(f"p_{c}_peak_time_s"), "{:.3f}", " s"))
+    log = find_log(run)
+    facts = log_facts(log)
+    start = facts["restart_t"] if facts["restart_t"] is not None else run.config["time"]["start"]
+    ours["run"] = f"commit {run.revision[:7]}, no log found (wall time, threads unknown)" if not log else (f"commit {(facts['revision'] or run.revision)[:7]}, "
+                   f"{facts['threads'] if facts['threads'] else '?'} threads, "
+                   f"wall {fmt(facts['wall_s'], '{:.0f}', ' s')} for t = {0.0 if abs(start) < 1e-9 else start:g}"
+                   f" to {m.get('end_time_s', np.nan):.2f} s")
+    ref = paper["impact"].get(run.case_index)
+    theirs = {
+        "front": f"{paper['front_time']:.3f} s",
+        "impact": f"{ref:.3f} m/s" if ref else "not given",
+        "rate": f"maximum at ~{tp:.2f} s (value not in the text)",
+        "full": f"still filling at {tp:.2f} s",
+        "at_tp": "still filling (rate at its maximum)",
+        "fill": "not given; powder is left in the shoe at the end (text on Figs. 4, 9)",
+        "run": "",
+    }
+    for c in "ABC":
+        theirs["p_" + c] = f"sharp peak at ~{tp:.2f} s (value not in the text)"
+    return ours, theirs
+
+
+LABELS = [
+    ("front", "powder front reaches the die floor"),
+    ("impact", "mean impact velocity (arrivals in the first 5 ms)"),
+    ("rate", "largest mass transfer rate (5 ms window)"),
+    ("full", "die holds 99 % of its final powder"),
+    ("at_tp", "powder in the die at the paper's peak time"),
+    ("p_A", "cell A: largest gauge pressure (t >= 0)"),
+    ("p_B", "cell B: largest gauge pressure (t >= 0)"),
+    ("p_C", "cell C: largest gauge pressure (t >= 0)"),
+    ("fill", "powder in the die at the end"),
+    ("run", "run"),
+]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("runs", nargs="+", metavar="RUN_DIR")
+    a = p.parse_args()
+    runs = fl.load_runs(a.runs)
+    cols = [(run, *column(run)) for run in runs]
+    head = ["quantity"]
+    for run, _, _ in cols:
+        head += [f"ours, Case {run.case}", f"paper, Case {run.case}"]
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for key, label in LABELS:
+        cells = [label]
+        for _, ours, paper in cols:
+            cells += [ours[key], paper[key]]
+        print("| " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    fl.main_guard(main)
