@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
-#include "io/h5_util.hpp"
+#include "io/air_snapshot_reader.hpp"
 #include "io/xdmf_series.hpp"
 
 namespace cgdem::scaling {
@@ -60,27 +60,21 @@ std::vector<Frame> list_frames(const std::string& dir, const std::string& prefix
   std::vector<Frame> out;
   for (int64_t s : io::find_snapshot_steps(dir, prefix)) {
     const std::string f = dir + "/" + io::snapshot_file_name(prefix, s);
-    io::h5::Id file = io::h5::open_file(f);
-    out.push_back({io::h5::read_double_attribute(file, "time", f), f});
+    out.push_back({io::read_snapshot_time(f), f});
   }
   std::stable_sort(out.begin(), out.end(), [](const Frame& a, const Frame& b) { return a.t < b.t; });
   return out;
 }
 
 std::vector<double> read_cell_field(const std::string& f, const std::string& name, Grid* g) {
-  io::h5::Id file = io::h5::open_file(f);
-  std::vector<hsize_t> dims;
+  io::AirSnapshot s = io::read_air_snapshot(f, {name});
+  if (!s.scalars.count(name)) throw Error(fmt::format("{}: cell field '{}' is a vector, a scalar is needed", f, name));
   if (g) {
-    auto n = io::h5::read_int64(file, "grid/n", dims, f);
-    auto o = io::h5::read_double(file, "grid/origin", dims, f);
-    auto h = io::h5::read_double(file, "grid/spacing", dims, f);
-    if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error(f + ": /grid/n, origin, spacing must have 3 values");
-    g->nx = static_cast<int>(n[0]), g->ny = static_cast<int>(n[1]), g->nz = static_cast<int>(n[2]);
-    g->origin = {o[0], o[1], o[2]};
-    g->dx = h[0];
+    g->nx = static_cast<int>(s.grid.n[0]), g->ny = static_cast<int>(s.grid.n[1]), g->nz = static_cast<int>(s.grid.n[2]);
+    g->origin = s.grid.origin;
+    g->dx = s.grid.spacing.x;
   }
-  if (!io::h5::exists(file, "cells/" + name)) throw Error(fmt::format("{}: no cell field '{}'", f, name));
-  return io::h5::read_double(file, "cells/" + name, dims, f);
+  return std::move(s.scalars.at(name));
 }
 
 }  // namespace cgdem::scaling

@@ -36,11 +36,13 @@ struct Frame {
   double t = 0;
   std::string file;
 };
-// Snapshots <dir>/<prefix>_NNNNNN.h5 with their "time" attribute, ascending in time.
+// Snapshots <dir>/<prefix>_NNNNNN.h5 with their "time" attribute, ascending in time
+// (read through io/air_snapshot_reader.hpp, for particle and air snapshots alike).
 std::vector<Frame> list_frames(const std::string& dir, const std::string& prefix);
 
-// One cell field of an air snapshot (x fastest); `g` receives its grid. Throws cgdem::Error
-// naming the file and field.
+// One scalar cell field of an air snapshot (x fastest, io::read_air_snapshot); `g`, when
+// given, receives its grid (dx: the spacing along x). Throws cgdem::Error naming the file
+// and the field (an unknown name lists the file's fields).
 std::vector<double> read_cell_field(const std::string& file, const std::string& name, Grid* g);
 
 }  // namespace cgdem::scaling

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "io/atomic_file.hpp"
+#include "scaling/plot_script.hpp"
 
 namespace cgdem::scaling {
 
@@ -126,6 +127,22 @@ std::string pod_section(const Study& s) {
   return t;
 }
 
+// "## Pressure spectra": not applicable without air or pressure cells, else the runs'
+// Welch spectra overlaid (scale_pressure_spectra, spectrum_report.cpp).
+std::string pressure_spectra_md(const Study& s, const std::string& report_dir) {
+  std::string none;
+  if (!s.info.air) none = "the case has no air, so there is no pressure to analyse";
+  else if (!s.info.die_filling)
+    none = "the case has no pressure cells (only [walls.die_filling] writes p_<cell> to diagnostics.csv)";
+  if (!none.empty()) {
+    fmt::print("spectrum: not applicable: {}\n", none);
+    return "## Pressure spectra\n\nNot applicable: " + none + ".\n\n";
+  }
+  std::vector<std::string> dirs, labels;
+  for (const auto& r : s.runs) dirs.push_back(r.dir), labels.push_back(r.label);
+  return scale_pressure_spectra(dirs, labels, s.t0, report_dir);
+}
+
 }  // namespace
 
 std::string write_report(const Study& s, const ReportContext& c) {
@@ -145,14 +162,11 @@ std::string write_report(const Study& s, const ReportContext& c) {
   for (const auto& v : s.verdicts)
     md += fmt::format("| {} | {} | {}/{} | {} |\n", v.run, v.group, v.passed, v.total, word(v.agrees()));
   md += "\n" + budget_section(s) + observables_section(s) + pod_section(s);
-  md += "## Pressure spectra\n\n";
-  md += s.info.air ? "TODO: overlay the runs' Welch spectra of the pressure at A, B, C with scaling/spectrum (its "
-                     "run-folder entry point had not landed when this report writer was built); meanwhile run "
-                     "`cgdem spectrum` on the run folders.\n\n"
-                   : "Not applicable: the case has no air.\n\n";
+  md += pressure_spectra_md(s, c.dir);
   md += "## Files\n\nbudget_<run>.csv and deviation_<run>.csv (series per unit mass and (q_l - q_1)/S on the common "
         "times), budget_summary.csv, observables.csv, profile.csv, curves.csv (die filling), "
-        "pod_<field>_spectrum.csv, pod_<field>_angles.csv, the runs in <run>/ with their derived case.toml; plots "
+        "pod_<field>_spectrum.csv, pod_<field>_angles.csv, pressure_spectra.csv and spectrum/ (with air and pressure "
+        "cells), the runs in <run>/ with their derived case.toml; plots "
         "*.png when matplotlib is available (scaling/plot_scale.py).\n";
   const std::string path = (fs::path(c.dir) / "scale.md").string();
   io::write_file_atomic(path, md);
@@ -179,21 +193,10 @@ void print_verdicts(const Study& s) {
 }
 
 bool draw_plots(const std::string& report_dir) {
-  const fs::path script = fs::path(__FILE__).parent_path() / "plot_scale.py";
-  if (!fs::exists(script)) {
-    fmt::print("cgdem scale: plots skipped ({} not found)\n", script.string());
-    return false;
-  }
-  if (std::system("python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {
-    fmt::print("cgdem scale: plots skipped (python3 with matplotlib not available; the CSV files hold every series)\n");
-    return false;
-  }
-  const std::string cmd = fmt::format("python3 '{}' '{}'", script.string(), report_dir);
-  if (std::system(cmd.c_str()) != 0) {
-    fmt::print("cgdem scale: note: {} failed; the report and CSV files are complete without the plots\n", cmd);
-    return false;
-  }
-  return true;
+  const std::string why = run_plot_script("plot_scale.py", report_dir);
+  if (!why.empty())
+    fmt::print("cgdem scale: plots skipped ({}); the report and CSV files hold every series\n", why);
+  return why.empty();
 }
 
 }  // namespace cgdem::scaling

@@ -1,10 +1,12 @@
 // The report of a coarse-graining study: REPORT/scale.md (tables of deviations and
 // verdicts, observables side by side with the simply-large run, POD spectra and principal
-// angles), a CSV of every series and deviation, and PNG plots drawn by plot_scale.py when
+// angles, Welch spectra of the cell pressures overlaid across the runs), a CSV of every
+// series and deviation, and PNG plots drawn by plot_scale.py when
 // python3 with matplotlib is available (skipped with a note otherwise). Every file is
 // written atomically (io/atomic_file.hpp).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "scaling/scale_study.hpp"
 
@@ -16,6 +18,15 @@ struct ReportContext {
   std::string command;    // the command line, for reproduction
   std::vector<std::string> run_notes;  // "l=2: ran in 4.1 s" / "picked up"
 };
+
+// The section "Pressure spectra" of scale.md for runs with pressure cells: the runs'
+// Welch spectra of p_A, p_B, p_C overlaid on shared bins, with their deviation from the
+// first run (l = 1); writes REPORT/spectrum/ and REPORT/pressure_spectra.csv. Defined and
+// documented in spectrum_report.hpp / spectrum_report.cpp. Declared here as well, with
+// standard types only, because spectrum_report.hpp cannot be included next to
+// scale_study.hpp: series.hpp and spectrum.hpp both define a struct scaling::Peak.
+std::string scale_pressure_spectra(const std::vector<std::string>& run_dirs, const std::vector<std::string>& labels,
+                                   double t0, const std::string& report_dir);
 
 // Writes the files; returns the path of scale.md.
 std::string write_report(const Study& s, const ReportContext& c);

@@ -14,6 +14,7 @@
 #include "app/air_case.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
+#include "app/flow_case.hpp"
 #include "app/run_command.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
@@ -125,14 +126,17 @@ void write_derived_case(const std::string& base_case, const RunPlan& r) {
 }
 
 StudyInfo read_study_info(const std::string& case_file, const std::vector<std::string>& sets, const std::string& out) {
-  Config cfg = Config::from_file(case_file);
-  for (const auto& s : sets) cfg.apply_override(s);
-  if (!out.empty()) cfg.apply_override("output.dir=\"" + out + "\"");
+  StudyInfo s;
+  // Loaded, overridden and validated by cgdem run's own resolver: the same case paths, the
+  // same errors, and exactly the text its config.resolved.toml will hold (finished_run).
+  s.resolved = app::resolve_case_file({case_file, sets, out, ""});
+  // What the study needs is read back from that resolved text (every default filled in).
+  Config cfg = Config::from_string(s.resolved, case_file);
+  if (app::is_flow_case(cfg))
+    throw Error(fmt::format("{}: a single-phase flow case ([flow]) has no particles to coarse-grain", case_file));
   const app::DemCase c = app::read_dem_case(cfg);
   const app::AirCase air = app::read_air_case(cfg, c.dem);
   const app::DiagnosticsSpec diag = app::read_diagnostics(cfg);
-  cfg.check_unused();  // exactly as cgdem run: the resolved text must match theirs
-  StudyInfo s;
   s.lo = c.dem.domain.lo;
   s.hi = c.dem.domain.hi;
   s.periodic = {c.dem.periodic[0], c.dem.periodic[1], c.dem.periodic[2]};
@@ -146,7 +150,6 @@ StudyInfo read_study_info(const std::string& case_file, const std::vector<std::s
   s.air = air.enabled;
   s.air_dx = air.enabled ? air.grid.dx : 0.0;
   s.die_filling = diag.enabled;
-  s.resolved = cfg.resolved_toml();
   return s;
 }
 

@@ -38,6 +38,9 @@ std::vector<RunPlan> plan_runs(const std::vector<double>& ratios, double simply_
 void write_derived_case(const std::string& base_case, const RunPlan& r);
 
 // What a study needs to know of its case (read from a derived case with the overrides).
+// The case is resolved by app::resolve_case_file, as `cgdem run` resolves it (same path
+// handling, same validation and errors), and `resolved` is exactly the configuration the
+// run writes to config.resolved.toml. `out` overrides output.dir (empty: the case's).
 struct StudyInfo {
   Vec3 lo, hi;  // domain, m
   std::array<bool, 3> periodic{false, false, false};

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "io/atomic_file.hpp"
+#include "scaling/plot_script.hpp"
 #include "scaling/spectrum_report.hpp"
 
 namespace cgdem::scaling {
@@ -125,32 +126,10 @@ std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
   return md;
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-// python3 with matplotlib: $CGDEM_PYTHON, python3 on the PATH, or the system's.
-std::string find_python() {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv("CGDEM_PYTHON")) candidates.emplace_back(env);
-  candidates.emplace_back("python3");
-  candidates.emplace_back("/usr/bin/python3");
-  for (const auto& py : candidates)
-    if (std::system((shell_quote(py) + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0) return py;
-  return "";
-}
-
 // Runs scaling/plot_spectrum.py on `dir`; returns the note for the report and the log.
 std::string plot(const std::string& dir) {
-  const std::filesystem::path script = std::filesystem::path(__FILE__).parent_path() / "plot_spectrum.py";
-  if (!std::filesystem::exists(script)) return fmt::format("no PNG: plot script {} not found", script.string());
-  const std::string py = find_python();
-  if (py.empty()) return "no PNG: python3 with matplotlib not found (apt-get install python3-matplotlib)";
-  const std::string cmd = fmt::format("{} {} {}", shell_quote(py), shell_quote(script.string()), shell_quote(dir));
-  if (std::system(cmd.c_str()) != 0) return fmt::format("no PNG: {} failed", cmd);
-  return "";
+  const std::string why = run_plot_script("plot_spectrum.py", dir);
+  return why.empty() ? "" : "no PNG: " + why;
 }
 
 }  // namespace

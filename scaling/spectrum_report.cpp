@@ -1,4 +1,5 @@
-// analyse_runs: the runs' pressure series through one Welch estimator (spectrum_report.hpp).
+// analyse_runs: the runs' pressure series through one Welch estimator (spectrum_report.hpp);
+// below it, the pressure spectra section of `cgdem scale` (analyse_pressure_spectra ...).
 #include "scaling/spectrum_report.hpp"
 
 #include <fmt/format.h>
@@ -7,8 +8,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "scaling/spectrum_series.hpp"
 
 namespace cgdem::scaling {
@@ -161,6 +164,243 @@ SpectrumAnalysis spectrum_report(const std::vector<std::string>& run_dirs, const
   SpectrumAnalysis a = analyse_runs(run_dirs, labels, s);
   write_spectrum_outputs(a, out_dir);
   return a;
+}
+
+// ---- The pressure spectra of `cgdem scale` ----
+
+namespace {
+
+std::string num(double v, int digits) { return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : "n/a"; }
+std::string g10(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : "nan"; }
+std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.1f} %", 100 * v) : "n/a"; }
+double relative_deviation(double x, double ref) { return ref != 0 ? (x - ref) / ref : NAN; }
+
+// A run's pressure series from t0 on, or (nullopt) the reason it has none.
+std::optional<PressureSeries> pressure_series_from(const std::string& dir, double t0, std::string* why) {
+  try {
+    return select(read_pressure_series(dir), {}, t0, {});
+  } catch (const Error& e) {
+    *why = e.what();
+    return std::nullopt;
+  }
+}
+
+// 0 when every series is uniformly sampled (the 0.1 % rule) at the first one's interval,
+// so that one estimator gives them the same bins as they are; otherwise the first series'
+// median interval, to resample every run onto (`why` says what was found).
+double resampling_interval(const std::vector<PressureSeries>& series, const std::vector<std::string>& labels,
+                           std::string* why) {
+  const double dt = uniform_interval(series[0], INFINITY);  // the median interval
+  for (size_t r = 0; r < series.size(); ++r) {
+    try {
+      const double d = uniform_interval(series[r]);
+      if (std::abs(d - dt) <= 1e-3 * dt) continue;
+      *why = fmt::format("{} is sampled every {:.6g} s, {} every {:.6g} s", labels[0], dt, labels[r], d);
+    } catch (const Error& e) {
+      *why = labels[r] + ": " + e.what();
+    }
+    return dt;
+  }
+  return 0;
+}
+
+// Whether the estimator's segment fits the series (the automatic segment: 8 segments of at
+// least 8 samples); the reason otherwise.
+bool long_enough_for_welch(const PressureSeries& ser, const SpectrumSettings& st, std::string* why) {
+  const double dt = st.dt > 0 ? st.dt : uniform_interval(ser, INFINITY);
+  const size_t n = st.dt > 0 ? resample(ser, st.dt).t.size() : ser.t.size();
+  try {
+    segment_samples(st.segment, dt, n, st.overlap);
+    return true;
+  } catch (const Error&) {
+    const int needed = static_cast<int>(std::ceil(8 * (1 + 7 * (1 - st.overlap)) - 1e-9));
+    *why = fmt::format("{} samples of p from t = {:.6g} to {:.6g} s, too few for one segment of the default estimator "
+                       "(8 segments of at least 8 samples at {:.0f} % overlap need {} samples)",
+                       n, ser.t.front(), ser.t.back(), 100 * st.overlap, needed);
+    return false;
+  }
+}
+
+// sum P df over the bins within h of `bin` (the band of Peak::band_power, find_peaks).
+double power_in_band(const std::vector<double>& psd, int bin, int h, double df) {
+  double sum = 0;
+  for (int j = std::max(0, bin - h); j <= std::min(static_cast<int>(psd.size()) - 1, bin + h); ++j) sum += psd[j] * df;
+  return sum;
+}
+
+std::string spectra_method(const PressureSpectra& p, double t0) {
+  const WelchParams& w = p.analysis.params;
+  std::string t = fmt::format(
+      "Welch spectra of the gauge pressure at the cells (diagnostics.csv, columns p_<cell>) from t0 = {:g} s on, "
+      "with the defaults of `cgdem spectrum` (docs/spectra.md): {} window, {:.0f} % overlap, detrending \"{}\" of "
+      "each segment, segment L = {} samples = {} s (the largest power of two giving 8 segments of the shortest "
+      "run). Every run goes through this one estimator (fs = {} Hz, the same L), so the runs share the bins "
+      "f_m = m fs / L (df = {} Hz, up to {} Hz): `spectrum/psd.csv` holds them side by side on that one frequency "
+      "column.",
+      t0, to_string(w.window), 100.0 * w.overlap / w.segment, to_string(w.detrend), w.segment,
+      num(w.segment / w.fs, 4), num(w.fs, 6), num(w.fs / w.segment, 4), num(p.analysis.f.back(), 6));
+  if (p.resampled_dt > 0)
+    t += fmt::format(" The series were resampled linearly onto dt = {:g} s (the first run's median interval) because "
+                     "{}.",
+                     p.resampled_dt, p.resampled_why);
+  return t + "\n\n";
+}
+
+int segments_of(const SpectrumAnalysis& a, const std::string& run) {
+  for (const auto& r : a.runs)
+    if (r.label == run) return r.segments;
+  return 0;
+}
+
+std::string spectra_table(const PressureSpectra& p, const std::vector<SpectrumDeviation>& dev, const std::string& ref) {
+  std::string t = fmt::format(
+      "Dominant peak of each cell (largest local maximum of the PSD, DC left out; interpolated frequency in "
+      "brackets), its band power (sum P df over the main lobe), the power of the run in the bins of {0}'s peak, and "
+      "the variance (integral of the PSD); deviations from {0} as (x - x_ref) / x_ref, frequency offsets in bins:\n\n"
+      "| run | cell | segments K | dominant f (Hz) | offset vs {0} (bins) | band power (Pa^2) | vs {0} | "
+      "power in {0}'s band (Pa^2) | vs {0} | variance (Pa^2) | vs {0} |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n",
+      ref);
+  for (const SpectrumDeviation& d : dev) {
+    const std::string offset = std::isfinite(d.offset_bins) ? fmt::format("{:+.2f}", d.offset_bins) : "n/a";
+    t += fmt::format("| {} | {} | {} | {} ({}) | {} | {} | {} | {} | {} | {} | {} |\n", d.run, d.cell,
+                     segments_of(p.analysis, d.run), num(d.f, 5), num(d.f_interp, 5), offset, num(d.band_power, 4),
+                     percent(d.band_power_dev), num(d.power_in_ref_band, 4), percent(d.ref_band_dev),
+                     num(d.variance, 4), percent(d.variance_dev));
+  }
+  return t;
+}
+
+void print_spectra(const PressureSpectra& p, const std::vector<SpectrumDeviation>& dev) {
+  if (!p.not_applicable.empty()) fmt::print("spectrum: not applicable: {}\n", p.not_applicable);
+  for (const auto& w : p.left_out) fmt::print("spectrum: left out {}\n", w);
+  for (const SpectrumDeviation& d : dev)
+    fmt::print("spectrum {} {}: dominant {:.6g} Hz (offset {:.3g} bins), band power {:.4g} Pa^2 ({}), variance "
+               "{:.4g} Pa^2 ({})\n",
+               d.run, d.cell, d.f_interp, d.offset_bins, d.band_power, percent(d.band_power_dev), d.variance,
+               percent(d.variance_dev));
+}
+
+}  // namespace
+
+PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dirs,
+                                         const std::vector<std::string>& labels, double t0) {
+  if (labels.size() != run_dirs.size())
+    throw Error(fmt::format("pressure spectra: {} label(s) for {} run folder(s)", labels.size(), run_dirs.size()));
+  PressureSpectra p;
+  SpectrumSettings st;  // the defaults of `cgdem spectrum`
+  st.from = t0;
+  st.plot = false;  // plot_scale.py draws the overlay
+  std::vector<PressureSeries> series;
+  std::vector<std::string> readable_dirs, readable_labels;
+  for (size_t r = 0; r < run_dirs.size(); ++r) {
+    std::string why;
+    std::optional<PressureSeries> ser = pressure_series_from(run_dirs[r], t0, &why);
+    if (!ser) {
+      p.left_out.push_back(labels[r] + ": " + why);
+      continue;
+    }
+    series.push_back(std::move(*ser));
+    readable_dirs.push_back(run_dirs[r]);
+    readable_labels.push_back(labels[r]);
+  }
+  if (series.empty()) {
+    p.not_applicable = "no run has a readable pressure series";
+    return p;
+  }
+  st.dt = p.resampled_dt = resampling_interval(series, readable_labels, &p.resampled_why);
+  std::vector<std::string> dirs, names;
+  for (size_t r = 0; r < series.size(); ++r) {
+    std::string why;
+    if (long_enough_for_welch(series[r], st, &why)) {
+      dirs.push_back(readable_dirs[r]);
+      names.push_back(readable_labels[r]);
+    } else {
+      p.left_out.push_back(readable_labels[r] + ": " + why);
+    }
+  }
+  if (dirs.empty()) {
+    p.not_applicable = "no run is long enough for the estimator";
+    return p;
+  }
+  try {
+    p.analysis = analyse_runs(dirs, names, st);
+  } catch (const Error& e) {
+    p.not_applicable = std::string("the spectra could not be estimated: ") + e.what();
+  }
+  return p;
+}
+
+std::vector<SpectrumDeviation> spectrum_deviations(const SpectrumAnalysis& a, const std::string& reference) {
+  std::vector<SpectrumDeviation> out;
+  const RunSpectrum* ref = nullptr;
+  for (const RunSpectrum& r : a.runs)
+    if (r.label == reference) ref = &r;
+  const double df = a.params.segment > 0 ? a.params.fs / a.params.segment : NAN;
+  const int h = main_lobe_half_width(a.params.window);
+  for (const RunSpectrum& r : a.runs)
+    for (size_t c = 0; c < r.cells.size(); ++c) {
+      SpectrumDeviation d;
+      d.run = r.label;
+      d.cell = r.cells[c];
+      d.variance = r.variance[c];
+      if (!r.peaks[c].empty()) {
+        d.f = r.peaks[c][0].f;
+        d.f_interp = r.peaks[c][0].f_interp;
+        d.band_power = r.peaks[c][0].band_power;
+      }
+      if (!ref || c >= ref->cells.size() || ref->cells[c] != r.cells[c] || ref->peaks[c].empty()) {
+        out.push_back(d);
+        continue;
+      }
+      const Peak& rp = ref->peaks[c][0];
+      d.power_in_ref_band = power_in_band(r.psd[c], rp.bin, h, df);
+      d.offset_bins = (d.f_interp - rp.f_interp) / df;
+      d.band_power_dev = relative_deviation(d.band_power, rp.band_power);
+      d.ref_band_dev = relative_deviation(d.power_in_ref_band, rp.band_power);
+      d.variance_dev = relative_deviation(d.variance, ref->variance[c]);
+      out.push_back(d);
+    }
+  return out;
+}
+
+std::string pressure_spectra_section(const PressureSpectra& p, const std::vector<SpectrumDeviation>& dev, double t0,
+                                     const std::string& reference) {
+  std::string t = "## Pressure spectra\n\n";
+  if (!p.not_applicable.empty()) t += "Not applicable: " + p.not_applicable + ".\n\n";
+  else t += spectra_method(p, t0) + spectra_table(p, dev, reference);
+  if (!p.left_out.empty()) {
+    t += "\nLeft out:\n\n";
+    for (const auto& w : p.left_out) t += "* " + w + "\n";
+  }
+  if (p.not_applicable.empty())
+    t += "\nFiles: `spectrum/psd.csv` (PSD in Pa^2/Hz, one column `<run>:<cell>` each), `spectrum/coherence.csv`, "
+         "`spectrum/peaks.csv`, `spectrum/spectrum.md` (the estimator's parameters and window factors), "
+         "`pressure_spectra.csv` (the table above), `pressure_psd.png` (the overlay, plot_scale.py).\n";
+  return t + "\n";
+}
+
+void write_pressure_spectra(const PressureSpectra& p, const std::vector<SpectrumDeviation>& dev,
+                            const std::string& dir) {
+  if (!p.not_applicable.empty()) return;
+  write_spectrum_outputs(p.analysis, (std::filesystem::path(dir) / "spectrum").string());
+  std::string csv = "run,cell,f_Hz,f_interp_Hz,offset_bins_vs_ref,band_power_Pa2,band_power_rel_dev,"
+                    "power_in_ref_band_Pa2,power_in_ref_band_rel_dev,variance_Pa2,variance_rel_dev\n";
+  for (const SpectrumDeviation& d : dev)
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", d.run, d.cell, g10(d.f), g10(d.f_interp),
+                       g10(d.offset_bins), g10(d.band_power), g10(d.band_power_dev), g10(d.power_in_ref_band),
+                       g10(d.ref_band_dev), g10(d.variance), g10(d.variance_dev));
+  io::write_file_atomic((std::filesystem::path(dir) / "pressure_spectra.csv").string(), csv);
+}
+
+std::string scale_pressure_spectra(const std::vector<std::string>& run_dirs, const std::vector<std::string>& labels,
+                                   double t0, const std::string& report_dir) {
+  const PressureSpectra p = analyse_pressure_spectra(run_dirs, labels, t0);
+  const std::string reference = labels.empty() ? "" : labels[0];
+  const std::vector<SpectrumDeviation> d = spectrum_deviations(p.analysis, reference);
+  write_pressure_spectra(p, d, report_dir);
+  print_spectra(p, d);
+  return pressure_spectra_section(p, d, t0, reference);
 }
 
 }  // namespace cgdem::scaling

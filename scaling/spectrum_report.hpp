@@ -11,8 +11,9 @@
 //   peaks.csv      run,cell,rank,f_Hz,f_interp_Hz,psd_Pa2_per_Hz,band_power_Pa2,variance_fraction
 //   spectrum.md    parameters, resolution, segments, window correction, dominant frequencies
 //   psd.png, coherence.png when python3 with matplotlib is found (scaling/plot_spectrum.py)
-// every file written atomically.
+// every file written atomically. Below: the pressure spectra section of `cgdem scale`.
 #pragma once
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,5 +74,57 @@ std::string dominant_summary(const SpectrumAnalysis& a);
 // analyse_runs + write_spectrum_outputs: the entry point for `cgdem scale`.
 SpectrumAnalysis spectrum_report(const std::vector<std::string>& run_dirs, const std::vector<std::string>& labels,
                                  const SpectrumSettings& s, const std::string& out_dir);
+
+// ---- The pressure spectra of a coarse-graining study (`cgdem scale`, docs/scaling.md) ----
+//
+// The runs' series from t0 on go through ONE estimator with the defaults of `cgdem
+// spectrum` (Hann, 50 % overlap, mean removed per segment, the automatic segment of the
+// shortest run), so every run has the same fs and segment length L and the spectra share
+// the bins f_m = m fs / L. When a run's output times are not uniform (the 0.1 % rule of
+// spectrum_series.hpp) or the runs are sampled at different intervals, every run is
+// resampled linearly onto the first readable run's median interval, and `resampled_why`
+// says why. Never throws on a run's data: a run that cannot be analysed (no folder or
+// diagnostics.csv, no sample from t0 on, too few samples for the estimator) is left out
+// with the reason; if none is left, `not_applicable` says so.
+struct PressureSpectra {
+  std::string not_applicable;         // non-empty: why there are no spectra at all
+  std::vector<std::string> left_out;  // "<run>: <reason>"
+  double resampled_dt = 0;            // s; > 0 when resampled onto this interval
+  std::string resampled_why;
+  SpectrumAnalysis analysis;          // the analysed runs, in the given order
+};
+PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dirs,
+                                         const std::vector<std::string>& labels, double t0);
+
+// The dominant peak (rank 1) of each run and cell against the reference run on the shared
+// bins: the frequency offset in bins (interpolated frequencies), and the relative deviations
+// (x - x_ref) / x_ref of the band power of the run's own peak, of the power in the bins of
+// the reference's peak (the same bins for both runs: a peak that moved away reads -100 %),
+// and of the variance. NaN where the reference run, its cell or a peak is missing.
+struct SpectrumDeviation {
+  std::string run, cell;
+  double f = NAN, f_interp = NAN;                                      // Hz
+  double band_power = NAN, power_in_ref_band = NAN, variance = NAN;    // Pa^2
+  double offset_bins = NAN, band_power_dev = NAN, ref_band_dev = NAN, variance_dev = NAN;
+};
+std::vector<SpectrumDeviation> spectrum_deviations(const SpectrumAnalysis& a, const std::string& reference);
+
+// The "## Pressure spectra" Markdown section: the estimator, the shared bins, one row per
+// run and cell with its deviations from `reference`, the runs left out; or why there are
+// no spectra.
+std::string pressure_spectra_section(const PressureSpectra& p, const std::vector<SpectrumDeviation>& d, double t0,
+                                     const std::string& reference);
+
+// DIR/spectrum/ (write_spectrum_outputs: psd.csv with f_Hz then <run>:<cell> side by side,
+// coherence.csv, peaks.csv, spectrum.md; no PNG, plot_scale.py draws the overlay) and
+// DIR/pressure_spectra.csv (the rows of `d`), all written atomically; nothing when
+// p.not_applicable is set.
+void write_pressure_spectra(const PressureSpectra& p, const std::vector<SpectrumDeviation>& d, const std::string& dir);
+
+// All of the above for `cgdem scale` (labels[0] is the reference, l = 1): analyses, writes
+// into report_dir, prints one line per run and cell ("spectrum <run> <cell>: ...") and
+// returns the section. Also declared in scale_report.hpp.
+std::string scale_pressure_spectra(const std::vector<std::string>& run_dirs, const std::vector<std::string>& labels,
+                                   double t0, const std::string& report_dir);
 
 }  // namespace cgdem::scaling
