@@ -14,6 +14,7 @@
 #include "io/grid_snapshot_series.hpp"
 #include "io/snapshot_series.hpp"
 #include "scaling/fields.hpp"
+#include "tests/error_of.hpp"
 #include "tests/io/scratch.hpp"
 
 namespace cgdem {
@@ -21,14 +22,7 @@ namespace {
 
 using io::test::scratch_dir;
 
-std::string error_of(auto f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using cgdem::test::error_of;
 
 // Values that do not round-trip through a decimal print: the comparison must be exact.
 std::vector<double> field(size_t n, double phase) {

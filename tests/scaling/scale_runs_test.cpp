@@ -15,6 +15,7 @@
 #include "app/run_command.hpp"
 #include "core/error.hpp"
 #include "scaling/scale_runs.hpp"
+#include "tests/error_of.hpp"
 #include "tests/io/scratch.hpp"
 
 namespace cgdem::scaling {
@@ -27,14 +28,7 @@ using io::test::spit;
 const std::string kColumn = std::string(CGDEM_SOURCE_DIR) + "/validation/scaling_column_collapse/case.toml";
 const std::string kDieFilling = std::string(CGDEM_SOURCE_DIR) + "/validation/die_filling/case_1_3.toml";
 
-std::string error_of(auto f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using cgdem::test::error_of;
 
 TEST(ScaleRuns, StudyInfoIsResolvedAsCgdemRunResolvesIt) {
   const std::string report = scratch_dir();

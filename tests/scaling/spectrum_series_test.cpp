@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "scaling/spectrum_report.hpp"
 #include "scaling/spectrum_series.hpp"
+#include "tests/error_of.hpp"
 #include "tests/io/scratch.hpp"
 
 using namespace cgdem::scaling;
@@ -20,14 +21,7 @@ using cgdem::io::test::spit;
 
 namespace {
 
-std::string error_of(auto f) {
-  try {
-    f();
-  } catch (const cgdem::Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using cgdem::test::error_of;
 
 // A run folder whose diagnostics.csv has p_A = sin(2 pi fA t), p_B = 0.5 sin(2 pi fB t),
 // n rows from t0 every dt (the time written as n*dt, as the run loop accumulates it).
