@@ -78,15 +78,20 @@ double DieDiagnostics::mass_in_die(const Particles& p) const {
   return m;
 }
 
-void DieDiagnostics::observe(double t, const Particles& p) {
+void DieDiagnostics::observe(double t, const Particles& p, double horizon) {
   if (!spec_.enabled) return;
   for (size_t i = 0; i < p.size(); ++i) {
     const auto id = static_cast<size_t>(p.id[i]);
     if (id >= hit_.size()) hit_.resize(id + 1, 0);
     if (hit_[id] || !in_mouth(p.x[i])) continue;
-    if (p.x[i].z - p.radius[i] < floor_z(p.x[i].x) + band_) {
+    const double gap = p.x[i].z - p.radius[i] - (floor_z(p.x[i].x) + band_);  // to the band
+    const double s = -p.v[i].z;                                                // downward speed
+    if (gap < 0) {
       hit_[id] = 1;
-      impacts_.push_back({p.id[i], t, -p.v[i].z, mass_[p.species[i]]});
+      impacts_.push_back({p.id[i], t, s, mass_[p.species[i]]});
+    } else if (s > 0 && gap < s * horizon) {  // reaches the band before the next look
+      hit_[id] = 1;
+      impacts_.push_back({p.id[i], t + gap / s, s, mass_[p.species[i]]});
     }
   }
   history_.push_back({t, mass_in_die(p)});
@@ -94,7 +99,8 @@ void DieDiagnostics::observe(double t, const Particles& p) {
 
 std::optional<std::pair<double, double>> DieDiagnostics::front_impact() const {
   if (impacts_.empty()) return std::nullopt;
-  const double t0 = impacts_.front().t;
+  double t0 = impacts_.front().t;
+  for (const auto& im : impacts_) t0 = std::min(t0, im.t);
   double mv = 0, m = 0;
   for (const auto& im : impacts_)
     if (im.t <= t0 + spec_.impact_window) mv += im.mass * im.speed_down, m += im.mass;

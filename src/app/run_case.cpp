@@ -270,13 +270,13 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
         fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
                    "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
       auto ts = out_timers.scope(t_observe);
-      diag.observe(dem->time(), dem->particles());
+      diag.observe(dem->time(), dem->particles(), st.dt_fluid);  // the next step: as long as this one
     } else {
       dem->step();
       particle_steps += static_cast<long>(dem->particles().size());
       if (dem->steps() % observe_every == 0) {
         auto ts = out_timers.scope(t_observe);
-        diag.observe(dem->time(), dem->particles());
+        diag.observe(dem->time(), dem->particles(), observe_every * c.dem.dt);
       }
     }
     const double t = dem->time();
