@@ -34,8 +34,8 @@ def log_facts(path):
     facts["wall_s"] = float(m[-1]) if m else None
     m = re.findall(r"--threads (\d+)", text)
     facts["threads"] = int(m[-1]) if m else None
-    m = re.search(r"^cgdem (\S+):", text, re.M)
-    facts["revision"] = m.group(1) if m else None
+    m = re.findall(r"^cgdem (\S+):", text, re.M)  # the last run of the log (a rerun appends)
+    facts["revision"] = m[-1] if m else None
     m = re.findall(r"restarting from \S+ at t = (\S+) s", text)
     facts["restart_t"] = float(m[-1]) if m else None
     return facts
