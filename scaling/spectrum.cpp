@@ -192,10 +192,17 @@ std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half
       const double den = a - 2 * b + c;
       if (den < 0) p.f_interp = (k + 0.5 * (a - c) / den) * df;
     }
-    for (int j = std::max(0, k - half_width); j <= std::min(n - 1, k + half_width); ++j) p.band_power += psd[j] * df;
+    p.band_power = band_power(psd, k, half_width, df);
     peaks.push_back(p);
   }
   return peaks;
+}
+
+double band_power(const std::vector<double>& psd, int k, int half_width, double df) {
+  const int n = static_cast<int>(psd.size());
+  double sum = 0;
+  for (int j = std::max(0, k - half_width); j <= std::min(n - 1, k + half_width); ++j) sum += psd[j] * df;
+  return sum;
 }
 
 }  // namespace cgdem::scaling

@@ -114,4 +114,8 @@ struct Peak {
 };
 std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half_width, int count);
 
+// Power in the band of bins k - half_width .. k + half_width (clipped to the spectrum):
+// sum P df, the band_power of a peak at bin k.
+double band_power(const std::vector<double>& psd, int k, int half_width, double df);
+
 }  // namespace cgdem::scaling

@@ -221,13 +221,6 @@ bool long_enough_for_welch(const PressureSeries& ser, const SpectrumSettings& st
   }
 }
 
-// sum P df over the bins within h of `bin` (the band of Peak::band_power, find_peaks).
-double power_in_band(const std::vector<double>& psd, int bin, int h, double df) {
-  double sum = 0;
-  for (int j = std::max(0, bin - h); j <= std::min(static_cast<int>(psd.size()) - 1, bin + h); ++j) sum += psd[j] * df;
-  return sum;
-}
-
 std::string spectra_method(const PressureSpectra& p, double t0) {
   const WelchParams& w = p.analysis.params;
   std::string t = fmt::format(
@@ -354,7 +347,7 @@ std::vector<SpectrumDeviation> spectrum_deviations(const SpectrumAnalysis& a, co
         continue;
       }
       const Peak& rp = ref->peaks[c][0];
-      d.power_in_ref_band = power_in_band(r.psd[c], rp.bin, h, df);
+      d.power_in_ref_band = band_power(r.psd[c], rp.bin, h, df);
       d.offset_bins = (d.f_interp - rp.f_interp) / df;
       d.band_power_dev = relative_deviation(d.band_power, rp.band_power);
       d.ref_band_dev = relative_deviation(d.power_in_ref_band, rp.band_power);
