@@ -13,8 +13,9 @@
 //   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
 //                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
 //   6. correction       each parcel receives the change of its drag over the step,
-//                       dt_f c_p (u^{n+1} - u_f): the drag exchange conserves momentum
-//                       exactly; the pressure force lags one step (exchange.hpp says why)
+//                       a (u^{n+1} - u_f) / (1 + a/m_p), a = dt_f c_p: the drag exchange
+//                       conserves momentum where a << m_p and stays bounded where the drag
+//                       is stiff; the pressure force lags one step (exchange.hpp says why)
 // Both phases treat the drag implicitly, so dt_f may exceed the air's drag relaxation time
 // eps rho_f/beta (~1e-5 s in a packed bed) by orders of magnitude.
 //

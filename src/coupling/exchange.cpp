@@ -127,7 +127,8 @@ void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights
   for (int i = 0; i < n; ++i) {
     Vec3 u;
     for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
-    const Vec3 dj = (dt_f * p.drag[i]) * (u - p.u_fluid[i]);
+    const double a = dt_f * p.drag[i];
+    const Vec3 dj = (a / (1 + a * p.inv_mass[i])) * (u - p.u_fluid[i]);
     const Vec3 v0 = p.v[i];
     p.v[i] += p.inv_mass[i] * dj;
     p.j_drag[i] += dj;
