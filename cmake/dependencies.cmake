@@ -6,6 +6,8 @@ find_package(fmt REQUIRED)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(SUNDIALS REQUIRED)
 find_package(GTest)
+# Optional: the single-process build needs no MPI (CGDEM_MPI in CMakeLists.txt).
+find_package(MPI COMPONENTS CXX)
 
 # toml11 and CLI11 are header-only; Debian installs them in /usr/include.
 find_path(TOML11_INCLUDE_DIR toml.hpp REQUIRED)

@@ -33,6 +33,12 @@ cgdem_module(cgdem_pressure DIRS solvers/pressure
   DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial SUNDIALS::nvecopenmp PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse Eigen3::Eigen)
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
 cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
+# Domain decomposition and parcel migration (issue 6); the MPI exchange in src/parallel/mpi.
+if(CGDEM_MPI)
+  cgdem_module(cgdem_parallel DIRS src/parallel src/parallel/mpi DEPS cgdem_dem MPI::MPI_CXX)
+else()
+  cgdem_module(cgdem_parallel DIRS src/parallel DEPS cgdem_dem)
+endif()
 
 # The command line: its case readers, run loop and diagnostics are a library (tested in
 # tests/app); the executable is main.cpp.
@@ -70,6 +76,10 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(coupling cgdem_coupling)
   cgdem_tests(app cgdem_app)
   cgdem_tests(scaling cgdem_scaling)
+  cgdem_tests(parallel cgdem_parallel)
+  if(CGDEM_MPI)
+    include(${PROJECT_SOURCE_DIR}/tests/parallel/mpi/mpi_tests.cmake)
+  endif()
   # End-to-end checks of the command line (config errors, demo smoke run).
   if(EXISTS ${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
     include(${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)

@@ -35,14 +35,37 @@ struct CellGrid {
 
 constexpr int kNoImage = 13;  // image code (sx+1) + 3 (sy+1) + 9 (sz+1) with s = 0
 
-// Entry of the old history, in old indices: pair lists are sorted by partner.
+// The entry of pair (owner, other), owner < other, or -1: pair lists are sorted by partner.
+int find_entry(const std::vector<int>& off, const std::vector<int>& partner, int owner, int other) {
+  auto first = partner.begin() + off[owner], last = partner.begin() + off[owner + 1];
+  auto it = std::lower_bound(first, last, other);
+  return it == last || *it != other ? -1 : static_cast<int>(it - partner.begin());
+}
+
+// Entry of the old history, in old indices.
 const contact::History* find_history(const std::vector<int>& off, const std::vector<int>& partner,
                                      const std::vector<contact::History>& xi,
                          int owner, int other) {
-  auto first = partner.begin() + off[owner], last = partner.begin() + off[owner + 1];
-  auto it = std::lower_bound(first, last, other);
-  if (it == last || *it != other) return nullptr;
-  return &xi[it - partner.begin()];
+  const int e = find_entry(off, partner, owner, other);
+  return e < 0 ? nullptr : &xi[e];
+}
+
+// (id, local index) sorted by id, to find carried histories' particles; ids must be unique.
+std::vector<std::pair<int64_t, int>> index_by_id(const std::vector<int64_t>& id) {
+  std::vector<std::pair<int64_t, int>> by_id(id.size());
+  for (size_t i = 0; i < id.size(); ++i) by_id[i] = {id[i], static_cast<int>(i)};
+  std::sort(by_id.begin(), by_id.end());
+  for (size_t k = 1; k < by_id.size(); ++k)
+    if (by_id[k].first == by_id[k - 1].first)
+      throw Error(fmt::format("neighbour list: particle id {} is held twice (local indices {} and {}); ids must be "
+                              "unique to attach carried contact history",
+                              by_id[k].first, by_id[k - 1].second, by_id[k].second));
+  return by_id;
+}
+
+int local_index(const std::vector<std::pair<int64_t, int>>& by_id, int64_t id) {
+  auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<int64_t, int>{id, -1});
+  return it != by_id.end() && it->first == id ? it->second : -1;
 }
 
 }  // namespace
@@ -182,6 +205,15 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
       }
     }
   }
+  // Histories carried in from other ranks; an empty `incoming` costs nothing here.
+  std::vector<std::pair<int64_t, int>> by_id;
+  if (!incoming.empty()) by_id = index_by_id(p.id);
+  for (const CarriedPair& c : incoming.pairs) {
+    const int a = local_index(by_id, c.id_a), b = local_index(by_id, c.id_b);
+    if (a < 0 || b < 0 || a == b) continue;
+    const int e = find_entry(offset, partner, std::min(a, b), std::max(a, b));
+    if (e >= 0) hist[e] = a < b ? c.h : c.h.flipped();  // the owner is the lower index
+  }
   // Reverse index, entries in increasing order for each partner.
   rev_offset.assign(np + 1, 0);
   for (int e = 0; e < ne; ++e) ++rev_offset[partner[e] + 1];
@@ -217,9 +249,72 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
       for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e)
         if (wall_part[e] == old_wpart[k]) wall_hist[e] = old_wxi[k];
   }
+  for (const CarriedWall& c : incoming.walls) {
+    const int i = local_index(by_id, c.id);
+    if (i < 0) continue;
+    for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e)
+      if (wall_part[e] == c.part) wall_hist[e] = c.h;
+  }
+  incoming.pairs.clear();
+  incoming.walls.clear();
 
   x_at_build = p.x;
   body_offset_at_build = walls.offset;
+}
+
+void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
+  if (offset.empty()) return;
+  const int n_old = static_cast<int>(offset.size()) - 1;
+  std::vector<int> new_of_old(n_old, -1);
+  for (size_t k = 0; k < keep.size(); ++k) {
+    if (keep[k] < 0 || keep[k] >= n_old || (k > 0 && keep[k] <= keep[k - 1]))
+      throw Error(fmt::format("neighbour list: kept particle {} is old particle {}, out of range (0..{}) or not "
+                              "after the one before",
+                              k, keep[k], n_old - 1));
+    new_of_old[keep[k]] = static_cast<int>(k);
+  }
+  const size_t n = keep.size() + n_added;
+  // keep increases, so the renumbering keeps the order: each owner's partners stay sorted
+  // and above their owner, as build()'s carry-over expects.
+  std::vector<int> off(n + 1, 0), pa, woff(n + 1, 0), wpart;
+  std::vector<uint8_t> img;
+  std::vector<contact::History> xi, wxi;
+  for (size_t k = 0; k < keep.size(); ++k) {
+    const int i = keep[k];
+    for (int e = offset[i]; e < offset[i + 1]; ++e) {
+      const int j = new_of_old[partner[e]];
+      if (j < 0) continue;
+      pa.push_back(j);
+      img.push_back(image[e]);
+      xi.push_back(hist[e]);
+    }
+    off[k + 1] = static_cast<int>(pa.size());
+    wpart.insert(wpart.end(), wall_part.begin() + wall_offset[i], wall_part.begin() + wall_offset[i + 1]);
+    wxi.insert(wxi.end(), wall_hist.begin() + wall_offset[i], wall_hist.begin() + wall_offset[i + 1]);
+    woff[k + 1] = static_cast<int>(wpart.size());
+  }
+  for (size_t k = keep.size(); k < n; ++k) {
+    off[k + 1] = off[k];
+    woff[k + 1] = woff[k];
+  }
+  offset.swap(off);
+  partner.swap(pa);
+  image.swap(img);
+  hist.swap(xi);
+  wall_offset.swap(woff);
+  wall_part.swap(wpart);
+  wall_hist.swap(wxi);
+  // Derived state of the old numbering: dropped rather than left describing other
+  // particles; the next build() recomputes it.
+  for (auto* v : {&rev_offset, &rev_entry, &rev_pos, &first_owner, &last_owner}) v->clear();
+  live.clear();
+  direct.clear();
+  f_partner.clear();
+  t_partner.clear();
+  f_acc.clear();
+  t_acc.clear();
+  direct_team = 0;
+  x_at_build.clear();  // needs_rebuild() is true until the next build()
 }
 
 void NeighborList::derive() {

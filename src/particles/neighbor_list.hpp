@@ -15,7 +15,8 @@
 //
 // build() also sorts the particles along the cell grid (better cache use) and carries
 // the tangential history of every pair and every particle-wall contact over to the new
-// lists, by particle identity (negated when the pair's owner changes).
+// lists, by particle identity (negated when the pair's owner changes), together with the
+// histories that parcels arriving from another rank brought along (`incoming`).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -33,6 +34,21 @@ struct Periodicity {
   bool any() const { return axis[0] || axis[1] || axis[2]; }
   // Moves x into [lo, hi) on the periodic axes.
   void wrap(Vec3& x) const;
+};
+
+// Contact history that travels with a parcel to another rank (src/parallel/migration.hpp),
+// keyed by particle identity since local indices mean nothing there. A pair's history is
+// in the frame of its particle of lower id (id_a < id_b); a wall contact's is in the
+// particle's frame, as in the lists. Trivially copyable, without padding: these are also
+// the records of the migration buffers.
+struct CarriedPair {
+  int64_t id_a, id_b;
+  contact::History h;
+};
+struct CarriedWall {
+  int64_t id;
+  int64_t part;  // wall part index (the scene is the same on every rank)
+  contact::History h;
 };
 
 struct NeighborList {
@@ -68,9 +84,26 @@ struct NeighborList {
   std::vector<Vec3> x_at_build;
   std::vector<Vec3> body_offset_at_build;
   long builds = 0;
+  // Histories carried in by parcels that arrived since the last build: the next build()
+  // attaches each one to its pair or wall contact by particle id (flipping a pair's
+  // history when its owner, the lower local index, is the particle id_b), then clears
+  // them. One whose contact is not in the new lists is dropped, as build() drops the
+  // history of contacts that came apart. Transient: not saved in checkpoints.
+  struct Incoming {
+    std::vector<CarriedPair> pairs;
+    std::vector<CarriedWall> walls;
+    bool empty() const { return pairs.empty() && walls.empty(); }
+  } incoming;
 
   // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over.
   void build(Particles& p, const geometry::Scene::Frame& walls);
+  // Follows a change of the particle set made between builds (parcels sent to or received
+  // from another rank): particle k < keep.size() is the old particle keep[k] (keep
+  // increasing, as for Particles::reorder), the n_added after them are new. Keeps the
+  // history of the pairs and wall contacts among the kept particles, renumbered, so that
+  // the next build() carries it over; clears the derived fields, and needs_rebuild() is
+  // true until that build. Without lists (never built) it does nothing.
+  void retain(const std::vector<int>& keep, size_t n_added);
   // Recomputes live, rev_pos and clears the force pass output (after build() or after
   // the saved fields were loaded).
   void derive();
