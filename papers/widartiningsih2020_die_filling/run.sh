@@ -5,13 +5,10 @@
 #   papers/widartiningsih2020_die_filling/run.sh [options] [CASE ...] [-- extra cgdem run arguments]
 #
 #   CASE        1_1 1_2 1_3 1_4 2_1 2_2 2_3 2_4, or "all" (default: 1_3 2_3, the l = 3 cases).
-#               Wall time on 2 cores: Case 1-3's filling (t = 0 to 0.30 s) took 14.9 min
-#               at the cases' fluid step of 2e-4 s (validation/die_filling/README.md), the
-#               settling before it a few minutes more. The simply large x_4 have as many
-#               parcels and cost about the same. Projected from the per-phase times of that
-#               run (DEM work grows with the parcel count, the air's does not), not
-#               measured: the l = 2 cases (67,500 parcels) about 1 h each, the original
-#               systems 1_1 / 2_1 (540,000 parcels of 125 um) about 4 h each.
+#               Wall time on 2 cores, whole runs (t = -0.06 to 0.30 s) at revision 4fa76ae:
+#               Case 1-3 826 s, Case 2-4 849 s (19,992 parcels each), Case 1-2 2,054 s
+#               (67,472 parcels). Projected, not measured: the original systems 1_1 / 2_1
+#               (539,772 parcels) 3.4-4.1 h each (papers/widartiningsih2020_die_filling/README.md).
 #   --out DIR   folder for the runs (default: out/widartiningsih2020/<UTC time>_<git revision>
 #               under the repository); each case goes to DIR/case_X_Y, its log to
 #               DIR/logs/case_X_Y.log, the figures to DIR/figures, the numbers to DIR/table.md
