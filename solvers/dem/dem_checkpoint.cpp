@@ -11,9 +11,7 @@ namespace {
 
 template <class Archive, class P, class N>
 void particle_and_list_fields(Archive&& io, P& p, N& nl) {
-  io(p.id), io(p.species), io(p.x), io(p.v), io(p.omega), io(p.force), io(p.torque), io(p.f_ext);
-  io(p.drag), io(p.u_fluid), io(p.j_drag), io(p.radius), io(p.inv_mass), io(p.inv_inertia);
-  io(p.e_damping), io(p.e_friction), io(p.w_walls), io(p.w_fluid);
+  for_each_field(p, io);  // every Particles field, in declaration order
   io(nl.offset), io(nl.partner), io(nl.image), io(nl.hist), io(nl.rev_offset), io(nl.rev_entry);
   io(nl.wall_offset), io(nl.wall_part), io(nl.wall_hist), io(nl.x_at_build), io(nl.body_offset_at_build);
 }

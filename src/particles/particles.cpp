@@ -33,24 +33,7 @@ void apply(std::vector<T>& a, const std::vector<int>& order) {
 }  // namespace
 
 void Particles::reorder(const std::vector<int>& order) {
-  apply(id, order);
-  apply(species, order);
-  apply(x, order);
-  apply(v, order);
-  apply(omega, order);
-  apply(force, order);
-  apply(torque, order);
-  apply(f_ext, order);
-  apply(drag, order);
-  apply(u_fluid, order);
-  apply(j_drag, order);
-  apply(radius, order);
-  apply(inv_mass, order);
-  apply(inv_inertia, order);
-  apply(e_damping, order);
-  apply(e_friction, order);
-  apply(w_walls, order);
-  apply(w_fluid, order);
+  for_each_field(*this, [&](auto& field) { apply(field, order); });
 }
 
 }  // namespace cgdem

@@ -2,7 +2,9 @@
 // Local indices change when the neighbour list re-sorts particles in space; `id` is the
 // stable identity (contact history, output and restarts use it).
 #pragma once
+#include <concepts>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -33,5 +35,35 @@ struct Particles {
   // not listed in `order` are dropped.
   void reorder(const std::vector<int>& order);
 };
+
+// Calls f(field) on every member of Particles, in declaration order. The one place that
+// lists them: reorder(), the checkpoint (dem_checkpoint.cpp) and the migration buffers
+// (src/parallel/migration.cpp) all go through it. The structured binding names each
+// member once, so adding a member to Particles stops this compiling ("N names required")
+// until it is named here; no code that moves a parcel whole can then leave it behind.
+template <class P, class F>
+  requires std::same_as<std::remove_const_t<P>, Particles>
+void for_each_field(P& p, F&& f) {
+  auto& [id, species, x, v, omega, force, torque, f_ext, drag, u_fluid, j_drag, radius, inv_mass, inv_inertia,
+         e_damping, e_friction, w_walls, w_fluid] = p;
+  f(id);
+  f(species);
+  f(x);
+  f(v);
+  f(omega);
+  f(force);
+  f(torque);
+  f(f_ext);
+  f(drag);
+  f(u_fluid);
+  f(j_drag);
+  f(radius);
+  f(inv_mass);
+  f(inv_inertia);
+  f(e_damping);
+  f(e_friction);
+  f(w_walls);
+  f(w_fluid);
+}
 
 }  // namespace cgdem
