@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
 #include "core/config.hpp"
@@ -87,7 +88,16 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (openblas_set_num_threads) openblas_set_num_threads(1);
+  const auto launched = cgdem::app::launched_as();
   try {
+    // Under `mpirun -np N` (N > 1) every command stops before doing anything; only the
+    // first process says why, so the message is not repeated N times.
+    try {
+      cgdem::app::require_single_process(launched, app.get_subcommands().front()->get_name());
+    } catch (const cgdem::Error&) {
+      if (launched.rank != 0) return 2;
+      throw;
+    }
     if (*run) {
       if (threads > 0) omp_set_num_threads(threads);
       return cgdem::app::run_case_file({case_file, sets, output, restart});

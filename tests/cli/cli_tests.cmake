@@ -51,3 +51,23 @@ add_test(NAME cli.settled_state_reruns_bit_identically
          COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
                  -DWORK=${PROJECT_BINARY_DIR}/cli_out/settled -P ${PROJECT_SOURCE_DIR}/tests/cli/settled.cmake)
 set_tests_properties(cli.settled_state_reruns_bit_identically PROPERTIES LABELS cli)
+# Started as several processes of an MPI launcher, `cgdem run` stops before it runs
+# anything (src/app/launcher.hpp): the launcher's variables as OpenMPI sets them, and, where
+# OpenMPI is installed, a real `mpirun -np 2`.
+add_test(NAME cli.refuses_several_launcher_processes
+         COMMAND ${CMAKE_COMMAND} -E env OMPI_COMM_WORLD_SIZE=3 OMPI_COMM_WORLD_RANK=0
+                 ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                 "-DEXPECT=`cgdem run` was started as 3 processes \\(OMPI_COMM_WORLD_SIZE=3\\), but it runs in one process"
+                 "-DFORBID_OUT=particles|output" -DWORK=${PROJECT_BINARY_DIR}/cli_out/launcher
+                 -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
+set_tests_properties(cli.refuses_several_launcher_processes PROPERTIES LABELS cli)
+if(MPIEXEC_EXECUTABLE)
+  add_test(NAME cli.refuses_mpirun_np2
+           COMMAND ${CMAKE_COMMAND}
+                   "-DCGDEM=${MPIEXEC_EXECUTABLE};--allow-run-as-root;--oversubscribe;${MPIEXEC_NUMPROC_FLAG};2;$<TARGET_FILE:cgdem>"
+                   -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                   "-DEXPECT=`cgdem run` was started as 2 processes \\(OMPI_COMM_WORLD_SIZE=2\\)"
+                   "-DFORBID_OUT=particles" -DWORK=${PROJECT_BINARY_DIR}/cli_out/mpirun_np2
+                   -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
+  set_tests_properties(cli.refuses_mpirun_np2 PROPERTIES LABELS cli ENVIRONMENT "OMP_NUM_THREADS=1")
+endif()
