@@ -36,4 +36,8 @@ void Particles::reorder(const std::vector<int>& order) {
   for_each_field(*this, [&](auto& field) { apply(field, order); });
 }
 
+void Particles::append(const Particles& other) {
+  for_each_field(*this, other, [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); });
+}
+
 }  // namespace cgdem

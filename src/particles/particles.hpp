@@ -3,8 +3,11 @@
 // stable identity (contact history, output and restarts use it).
 #pragma once
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -34,36 +37,39 @@ struct Particles {
   // Reorder every field: new index i takes the particle at old index order[i]. Particles
   // not listed in `order` are dropped.
   void reorder(const std::vector<int>& order);
+  // Appends every parcel of `other` (all fields), in its order.
+  void append(const Particles& other);
 };
 
-// Calls f(field) on every member of Particles, in declaration order. The one place that
-// lists them: reorder(), the checkpoint (dem_checkpoint.cpp) and the migration buffers
-// (src/parallel/migration.cpp) all go through it. The structured binding names each
-// member once, so adding a member to Particles stops this compiling ("N names required")
-// until it is named here; no code that moves a parcel whole can then leave it behind.
-template <class P, class F>
+// Every member of Particles as a tuple of references, in declaration order. The one place
+// that lists them: for_each_field below, and through it reorder(), append(), the
+// checkpoint (dem_checkpoint.cpp) and the migration buffers (src/parallel). The
+// structured binding names each member once, so adding a member to Particles stops this
+// compiling ("N names required") until it is named here; no code that moves a parcel
+// whole can then leave it behind.
+template <class P>
   requires std::same_as<std::remove_const_t<P>, Particles>
-void for_each_field(P& p, F&& f) {
+auto field_refs(P& p) {
   auto& [id, species, x, v, omega, force, torque, f_ext, drag, u_fluid, j_drag, radius, inv_mass, inv_inertia,
          e_damping, e_friction, w_walls, w_fluid] = p;
-  f(id);
-  f(species);
-  f(x);
-  f(v);
-  f(omega);
-  f(force);
-  f(torque);
-  f(f_ext);
-  f(drag);
-  f(u_fluid);
-  f(j_drag);
-  f(radius);
-  f(inv_mass);
-  f(inv_inertia);
-  f(e_damping);
-  f(e_friction);
-  f(w_walls);
-  f(w_fluid);
+  return std::tie(id, species, x, v, omega, force, torque, f_ext, drag, u_fluid, j_drag, radius, inv_mass,
+                  inv_inertia, e_damping, e_friction, w_walls, w_fluid);
+}
+
+// f(field) for every member of p, in declaration order.
+template <class P, class F>
+void for_each_field(P& p, F&& f) {
+  std::apply([&](auto&... field) { (f(field), ...); }, field_refs(p));
+}
+
+// f(field of a, same field of b) for every member, in declaration order.
+template <class P, class Q, class F>
+void for_each_field(P& a, Q& b, F&& f) {
+  auto ta = field_refs(a);
+  auto tb = field_refs(b);
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    (f(std::get<I>(ta), std::get<I>(tb)), ...);
+  }(std::make_index_sequence<std::tuple_size_v<decltype(ta)>>{});
 }
 
 }  // namespace cgdem
