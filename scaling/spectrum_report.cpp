@@ -78,16 +78,26 @@ int segment_samples(const std::string& spec, double dt, size_t n, double overlap
 SpectrumAnalysis analyse_runs(const std::vector<std::string>& run_dirs, const std::vector<std::string>& given_labels,
                               const SpectrumSettings& s) {
   if (run_dirs.empty()) throw Error("spectrum: no run folder given");
+  const std::vector<std::string> labels = run_labels(run_dirs, given_labels);
+  std::vector<PressureSeries> read;
+  for (const std::string& dir : run_dirs) read.push_back(read_pressure_series(dir));
+  return analyse_series(std::move(read), labels, s);
+}
+
+SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vector<std::string>& labels,
+                                const SpectrumSettings& s) {
+  if (read.empty()) throw Error("spectrum: no run given");
+  if (labels.size() != read.size())
+    throw Error(fmt::format("spectrum: {} label(s) for {} series", labels.size(), read.size()));
   if (!(s.overlap >= 0 && s.overlap < 1)) throw Error(fmt::format("--overlap: {} is not in [0, 1)", s.overlap));
   if (s.peaks < 1) throw Error(fmt::format("--peaks: {} (at least 1)", s.peaks));
-  const std::vector<std::string> labels = run_labels(run_dirs, given_labels);
 
   // Series: selected range and cells, on a uniform grid (checked, or resampled onto --dt).
   std::vector<PressureSeries> series;
   std::vector<double> dt_data;
   std::vector<std::string> cells = s.cells;
-  for (const std::string& dir : run_dirs) {
-    PressureSeries raw = select(read_pressure_series(dir), cells, s.from, s.to);
+  for (PressureSeries& whole : read) {
+    PressureSeries raw = select(whole, cells, s.from, s.to);
     if (cells.empty()) cells = raw.cells;  // the first run's cells for every run
     dt_data.push_back(uniform_interval(raw, s.dt > 0 ? INFINITY : 1e-3));
     series.push_back(s.dt > 0 ? resample(raw, s.dt) : std::move(raw));
@@ -285,7 +295,7 @@ PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dir
   st.from = t0;
   st.plot = false;  // plot_scale.py draws the overlay
   std::vector<PressureSeries> series;
-  std::vector<std::string> readable_dirs, readable_labels;
+  std::vector<std::string> readable_labels;
   for (size_t r = 0; r < run_dirs.size(); ++r) {
     std::string why;
     std::optional<PressureSeries> ser = pressure_series_from(run_dirs[r], t0, &why);
@@ -294,7 +304,6 @@ PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dir
       continue;
     }
     series.push_back(std::move(*ser));
-    readable_dirs.push_back(run_dirs[r]);
     readable_labels.push_back(labels[r]);
   }
   if (series.empty()) {
@@ -302,22 +311,23 @@ PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dir
     return p;
   }
   st.dt = p.resampled_dt = resampling_interval(series, readable_labels, &p.resampled_why);
-  std::vector<std::string> dirs, names;
+  std::vector<PressureSeries> usable;  // read once: the estimator takes them as they are
+  std::vector<std::string> names;
   for (size_t r = 0; r < series.size(); ++r) {
     std::string why;
     if (long_enough_for_welch(series[r], st, &why)) {
-      dirs.push_back(readable_dirs[r]);
+      usable.push_back(std::move(series[r]));
       names.push_back(readable_labels[r]);
     } else {
       p.left_out.push_back(readable_labels[r] + ": " + why);
     }
   }
-  if (dirs.empty()) {
+  if (usable.empty()) {
     p.not_applicable = "no run is long enough for the estimator";
     return p;
   }
   try {
-    p.analysis = analyse_runs(dirs, names, st);
+    p.analysis = analyse_series(std::move(usable), names, st);
   } catch (const Error& e) {
     p.not_applicable = std::string("the spectra could not be estimated: ") + e.what();
   }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "scaling/spectrum.hpp"
+#include "scaling/spectrum_series.hpp"
 
 namespace cgdem::scaling {
 
@@ -63,6 +64,9 @@ int segment_samples(const std::string& spec, double dt, size_t n, double overlap
 // Reads and analyses the runs (labels: one per run, or empty for the folder names).
 SpectrumAnalysis analyse_runs(const std::vector<std::string>& run_dirs, const std::vector<std::string>& labels,
                               const SpectrumSettings& s);
+// The same for series already read (read_pressure_series), one label each.
+SpectrumAnalysis analyse_series(std::vector<PressureSeries> series, const std::vector<std::string>& labels,
+                                const SpectrumSettings& s);
 
 // Writes the files listed above into `dir` (created). Returns a note on the PNG (written,
 // or why it was skipped).
