@@ -11,7 +11,9 @@
 // stored at the entry's place in the reverse index and summed in pass 2 (per particle).
 // No shared writes and every sum in a fixed order, so the result is the same for any
 // number of threads (and the same bits as evaluating every entry into pass 2).
-// The energy a pair dissipates is booked to its owner.
+// The energy a pair dissipates is booked to its owner. A pair with a ghost (MPI runs) is
+// evaluated on both ranks, each keeping the force on its own parcel (the law gives the
+// partner's side exactly negated); its energy is booked once, on the rank of its lower id.
 // No floating-point contraction (the AVX2/AVX-512 builds of the kernel would otherwise
 // fuse multiply-adds): every build computes the same bits as the baseline one.
 #pragma GCC optimize("fp-contract=off")
@@ -174,6 +176,8 @@ void DemSolver::compute_forces() {
   Vec3 *force = p.force.data(), *torque_out = p.torque.data();
   double *e_damping = p.e_damping.data(), *e_friction = p.e_friction.data(), *w_walls = p.w_walls.data();
   const bool periodic = nl.periodic.any();
+  const int n_owned = static_cast<int>(nl.owned(p));  // n without ghosts
+  const int64_t* id = p.id.data();
 
 #pragma omp parallel if (n >= 512)
   {
@@ -257,6 +261,11 @@ void DemSolver::compute_forces() {
         pair_kernel_one_species(arrays, act, na, dt, table.pair(0, 0));
       else
         pair_kernel_species(arrays, act, na, dt, table, p.species.data());
+      if (n_owned < n)  // the ghost's rank books a split pair whose lower id is its parcel
+        for (int k = 0; k < na; ++k) {
+          const int j = partner[ent[k]];
+          if (j >= n_owned && id[j] < id[own[k]]) damp[k] = fric[k] = 0;
+        }
       // Back to the lists: history, liveness, and the partner's share: summed directly
       // (this thread evaluates all of the partner's entries, in entry order) or stored at
       // its place in the reverse index for pass 2. Skipped entries add +0, which changes

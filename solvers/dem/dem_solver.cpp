@@ -54,10 +54,10 @@ inline void kick_one(Particles& p, int i, double h, bool air) {
   p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
 }
 
-// Half kick and drift in one pass (one parallel region per step instead of three);
-// returns max |x_i - x_at_build_i|^2 for the rebuild test (0 when there is no build yet).
-double kick_and_drift(Particles& p, const std::vector<Vec3>& x_at_build, double h, double dt, bool air) {
-  const int n = static_cast<int>(p.size());
+// Half kick and drift of the particles 0..n-1 (the owned ones: ghosts are refreshed from
+// their owners) in one pass (one parallel region per step instead of three); returns
+// max |x_i - x_at_build_i|^2 for the rebuild test (0 when there is no build yet).
+double kick_and_drift(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool air) {
   const bool have_build = x_at_build.size() == p.size();
   double move2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : move2) if (n >= 512)
@@ -75,12 +75,14 @@ double kick_and_drift(Particles& p, const std::vector<Vec3>& x_at_build, double 
 }  // namespace
 
 void DemSolver::kick(double h) {
-  const int n = static_cast<int>(p_.size());
+  const int n = static_cast<int>(owned());
 #pragma omp parallel for schedule(static) if (n >= 512)
   for (int i = 0; i < n; ++i) kick_one(p_, i, h, air_forces_);
 }
 
+// Owned particles only: a hook removes the ghosts before (DomainExchange::drop_ghosts).
 void DemSolver::remove_escaped() {
+  if (nl_.ghosts > 0) throw Error("DemSolver: escaped parcels are removed only after the ghosts were dropped");
   std::vector<int> keep;
   keep.reserve(p_.size());
   for (size_t i = 0; i < p_.size(); ++i) {
@@ -99,7 +101,25 @@ void DemSolver::remove_escaped() {
   }
   if (keep.size() != p_.size()) {
     p_.reorder(keep);
-    nl_.offset.clear();  // indices changed: history cannot be matched (lost particles only)
+    // Serial: the lists are dropped, and with them every history (the behaviour the serial
+    // results were made with). With a hook the histories of the others are kept: the lists
+    // follow the removal, and the pairs with ghosts are records by id already.
+    if (exchange_)
+      nl_.retain(keep, 0);
+    else
+      nl_.offset.clear();
+  }
+}
+
+// Rebuilds the lists at x^n (the escaped parcels removed first).
+void DemSolver::rebuild_lists() {
+  if (exchange_) {
+    exchange_->drop_ghosts(p_, nl_);
+    remove_escaped();
+    exchange_->rebuild(p_, nl_, frame_);
+  } else {
+    remove_escaped();
+    nl_.build(p_, frame_);
   }
 }
 
@@ -107,11 +127,10 @@ void DemSolver::step() {
   const double dt = params_.dt;
   if (!forces_valid_) {  // first step (or particles were added): forces at x^n
     frame_ = scene_.at(t_);
-    nl_.offset.clear();
+    if (!exchange_) nl_.offset.clear();  // (a hook keeps the lists in step with its ghosts)
     {
       auto scope = timers_.scope(t_neigh_);
-      remove_escaped();
-      nl_.build(p_, frame_);
+      rebuild_lists();
     }
     compute_forces();
     forces_valid_ = true;
@@ -119,34 +138,64 @@ void DemSolver::step() {
   double move2;
   {
     auto scope = timers_.scope(t_kick_);
-    move2 = kick_and_drift(p_, nl_.x_at_build, 0.5 * dt, dt, air_forces_);
+    move2 = kick_and_drift(p_, static_cast<int>(owned()), nl_.x_at_build, 0.5 * dt, dt, air_forces_);
   }
   t_ += dt;
   ++steps_;
   frame_ = scene_.at(t_);
   {
     auto scope = timers_.scope(t_neigh_);
-    if (nl_.needs_rebuild(move2, p_.size(), frame_)) {
-      remove_escaped();
-      nl_.build(p_, frame_);
-    }
+    bool rebuild = nl_.needs_rebuild(move2, p_.size(), frame_);
+    if (exchange_) rebuild = exchange_->any(rebuild);
+    if (rebuild)
+      rebuild_lists();
+    else if (exchange_)
+      exchange_->refresh_ghosts(p_);
   }
   compute_forces();
   auto scope = timers_.scope(t_kick_);
   kick(0.5 * dt);
 }
 
-double DemSolver::fluid_work() const {
-  double w = removed_fluid_;
-  for (double x : p_.w_fluid) w += x;
-  return w;
+void DemSolver::resume(double t, long steps, long removed, const EnergyBudget& removed_accounts, Particles parcels,
+                       NeighborList::Incoming histories) {
+  for (int s : parcels.species)
+    if (s < 0 || s >= static_cast<int>(species_.size())) throw Error("resume: unknown species index");
+  p_ = std::move(parcels);
+  NeighborList lists;  // none yet: the first step builds them
+  lists.skin = nl_.skin;
+  lists.periodic = nl_.periodic;
+  lists.builds = nl_.builds;
+  lists.incoming = std::move(histories);
+  nl_ = std::move(lists);
+  t_ = t;
+  steps_ = steps;
+  removed_ = removed;
+  removed_damping_ = removed_accounts.dissipated_damping;
+  removed_friction_ = removed_accounts.dissipated_friction;
+  removed_walls_ = removed_accounts.work_walls;
+  removed_fluid_ = removed_accounts.work_fluid;
+  frame_ = scene_.at(t_);
+  forces_valid_ = true;  // the parcels carry the forces of step `steps`
+}
+
+EnergyBudget DemSolver::removed_accounts() const {
+  EnergyBudget b;
+  b.dissipated_damping = removed_damping_;
+  b.dissipated_friction = removed_friction_;
+  b.work_walls = removed_walls_;
+  b.work_fluid = removed_fluid_;
+  return b;
 }
 
 long DemSolver::contact_count() const {
   long c = 0;
-  for (size_t i = 0; i < p_.size(); ++i) {
+  const size_t n = owned();
+  for (size_t i = 0; i < n; ++i) {
     for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
-      const double r = p_.radius[i] + p_.radius[nl_.partner[e]];
+      const int j = nl_.partner[e];
+      if (static_cast<size_t>(j) >= n && p_.id[j] < p_.id[i]) continue;  // counted on the ghost's rank
+      const double r = p_.radius[i] + p_.radius[j];
       if (norm2(p_.x[i] - nl_.partner_x(p_, e)) < r * r) ++c;
     }
     for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e)

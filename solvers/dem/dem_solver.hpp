@@ -58,6 +58,25 @@ struct EnergyBudget {
   }
 };
 
+// What a run over several MPI ranks adds to the step (issue 6): the lists become global,
+// and ghost parcels stand for the neighbouring ranks' parcels. DemSolver stays free of
+// MPI; the implementation is parallel::DistributedDem (src/parallel/mpi/distributed_dem.hpp).
+// With a hook attached, the particles are this rank's owned parcels followed by
+// NeighborList::ghosts ghost copies; the step kicks and drifts only the owned ones.
+struct DomainExchange {
+  virtual ~DomainExchange() = default;
+  // The rebuild decision of every rank, from this rank's (a global OR).
+  virtual bool any(bool local_rebuild) = 0;
+  // At a list build, before the escaped parcels are removed: keeps the histories of the
+  // pairs with a ghost as id-keyed records and removes the ghosts (p and nl then hold the
+  // owned parcels only).
+  virtual void drop_ghosts(Particles& p, NeighborList& nl) = 0;
+  // Then: moves parcels to their owners, appends the new ghosts and builds nl.
+  virtual void rebuild(Particles& p, NeighborList& nl, const geometry::Scene::Frame& walls) = 0;
+  // Every step without a build, after the drift: the ghosts' x, v, omega from their owners.
+  virtual void refresh_ghosts(Particles& p) = 0;
+};
+
 class DemSolver {
  public:
   DemSolver(std::vector<Species> species, const MaterialParams& material, const DemParams& params,
@@ -76,6 +95,9 @@ class DemSolver {
   long steps() const { return steps_; }
   void step();
 
+  // This process's share: its owned parcels (all of them without a DomainExchange), a pair
+  // with a ghost counted on the rank of its lower id; over MPI ranks
+  // parallel::global_energy() (distributed_dem.hpp) sums the shares.
   EnergyBudget energy() const;
   // Work done on the particles by drag and f_ext since the start (kept per particle, summed
   // in a fixed order; includes removed particles).
@@ -85,10 +107,23 @@ class DemSolver {
   // books its work and f_ext's in w_fluid.
   void enable_air_forces(bool on) { air_forces_ = on; }
   long removed() const { return removed_; }      // particles that left the domain
+  // The energy accounts of the removed particles (dissipated_damping, dissipated_friction,
+  // work_walls, work_fluid; the other fields 0), which energy() adds to its totals.
+  EnergyBudget removed_accounts() const;
   long neighbor_builds() const { return nl_.builds; }
   size_t pair_entries() const { return nl_.pair_entries(); }
-  // Number of particle-particle contacts (pairs with overlap) and wall contacts.
+  // Number of particle-particle contacts (pairs with overlap) and wall contacts. With
+  // ghosts, the owned parcels' contacts, a pair with a ghost counted on the rank of its
+  // lower id (the sum over ranks is the global count).
   long contact_count() const;
+  // MPI runs (DomainExchange above): the hook, not owned (nullptr: the serial run, which
+  // is then exactly what it is without this). Attach it before the first step.
+  void set_domain_exchange(DomainExchange* x) { exchange_ = x; }
+  DomainExchange* domain_exchange() const { return exchange_; }
+  // Parcels of this rank (not ghosts): particles()[0 .. owned() - 1].
+  size_t owned() const { return nl_.owned(p_); }
+  const NeighborList& neighbor_list() const { return nl_; }
+  const geometry::Scene::Frame& frame() const { return frame_; }
   PhaseTimers& timers() { return timers_; }
   // Checkpoint: the complete state (particles in their current order, neighbour lists with
   // contact history, time, counters, energy accounts), so that a run continued from it is
@@ -96,6 +131,15 @@ class DemSolver {
   // built from the same case (species, material, walls).
   void save(io::ArchiveWriter& w) const;
   void load(io::ArchiveReader& r);
+  // Continues a run from a state handed out parcel by parcel (a checkpoint written on any
+  // number of MPI ranks, parallel/portable_state.hpp): the particles become `parcels`,
+  // whose force and torque are those of the checkpoint's step, `histories` wait in
+  // NeighborList::incoming, and the time, step count and removed parcels' totals are set.
+  // The next step kicks with the stored forces and builds the lists first (attaching the
+  // histories by id), as the run that wrote the checkpoint went on; only the order of the
+  // force sums may differ from it.
+  void resume(double t, long steps, long removed, const EnergyBudget& removed_accounts, Particles parcels,
+              NeighborList::Incoming histories);
   // Smallest collision time over all species pairs and walls.
   double min_collision_time() const { return table_.min_collision_time(); }
 
@@ -103,6 +147,7 @@ class DemSolver {
   void kick(double half_dt);
   void compute_forces();
   void remove_escaped();
+  void rebuild_lists();
 
   std::vector<Species> species_;
   ContactTable table_;
@@ -120,6 +165,7 @@ class DemSolver {
   double removed_damping_ = 0, removed_friction_ = 0, removed_walls_ = 0, removed_fluid_ = 0;
   PhaseTimers timers_;
   int t_kick_, t_drift_, t_neigh_, t_force_;
+  DomainExchange* exchange_ = nullptr;
 };
 
 }  // namespace cgdem

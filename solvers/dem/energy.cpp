@@ -10,7 +10,10 @@ namespace cgdem {
 EnergyBudget DemSolver::energy() const {
   EnergyBudget b;
   const Particles& p = p_;
-  for (size_t i = 0; i < p.size(); ++i) {
+  // This rank's parcels (all of them without MPI); a pair with a ghost is counted on the
+  // rank of its lower id, so that the sum over the ranks counts it once.
+  const size_t n = owned();
+  for (size_t i = 0; i < n; ++i) {
     const double m = 1.0 / p.inv_mass[i], I = 1.0 / p.inv_inertia[i];
     b.kinetic_translational += 0.5 * m * norm2(p.v[i]);
     b.kinetic_rotational += 0.5 * I * norm2(p.omega[i]);
@@ -25,6 +28,7 @@ EnergyBudget DemSolver::energy() const {
     if (!nl_.valid_for(p)) continue;
     for (int e = nl_.offset[i]; e < nl_.offset[i + 1]; ++e) {
       const int j = nl_.partner[e];
+      if (static_cast<size_t>(j) >= n && p.id[j] < p.id[i]) continue;
       const double overlap = p.radius[i] + p.radius[j] - norm(p.x[i] - nl_.partner_x(p, e));
       if (overlap <= 0) continue;
       const auto& c = table_.pair(p.species[i], p.species[j]);
@@ -41,6 +45,12 @@ EnergyBudget DemSolver::energy() const {
   b.dissipated_friction += removed_friction_;
   b.work_walls += removed_walls_;
   return b;
+}
+
+double DemSolver::fluid_work() const {
+  double w = removed_fluid_;
+  for (size_t i = 0; i < owned(); ++i) w += p_.w_fluid[i];
+  return w;
 }
 
 }  // namespace cgdem

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstring>
 #include <type_traits>
 
@@ -52,7 +54,7 @@ void take(std::span<const std::byte> b, size_t& at, size_t count, std::vector<T>
   at += count * sizeof(T);
 }
 
-Buffer serialise(const Particles& p, const std::vector<int>& members, const std::vector<CarriedPair>& pairs,
+Buffer serialise(const Particles& p, std::span<const int> members, const std::vector<CarriedPair>& pairs,
                  const std::vector<CarriedWall>& walls) {
   const Header h{kTag, static_cast<int64_t>(parcel_bytes()),
                  {static_cast<int64_t>(members.size()), static_cast<int64_t>(pairs.size()),
@@ -70,6 +72,11 @@ Buffer serialise(const Particles& p, const std::vector<int>& members, const std:
   append(b, pairs.data(), pairs.size());
   append(b, walls.data(), walls.size());
   return b;
+}
+
+// The record of pair (i, j), whose history h is in i's frame, in the lower id's frame.
+CarriedPair carried(const Particles& p, int i, int j, const contact::History& h) {
+  return p.id[i] < p.id[j] ? CarriedPair{p.id[i], p.id[j], h} : CarriedPair{p.id[j], p.id[i], h.flipped()};
 }
 
 void check_lists(const Particles& p, const NeighborList& nl, const char* what) {
@@ -105,15 +112,31 @@ std::vector<Buffer> pack_leaving(const Particles& p, const NeighborList& nl, std
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int j = nl.partner[e];
       if ((dest[i] < 0 && dest[j] < 0) || nl.hist[e].empty()) continue;
-      const contact::History& h = nl.hist[e];  // in the frame of i, the owner
-      const CarriedPair c =
-          p.id[i] < p.id[j] ? CarriedPair{p.id[i], p.id[j], h} : CarriedPair{p.id[j], p.id[i], h.flipped()};
+      const CarriedPair c = carried(p, i, j, nl.hist[e]);  // nl.hist[e] is in the frame of i, the owner
       if (dest[i] >= 0) pairs[dest[i]].push_back(c);
       if (dest[j] >= 0 && dest[j] != dest[i]) pairs[dest[j]].push_back(c);
     }
     if (dest[i] < 0) continue;
     for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
       if (!nl.wall_hist[e].empty()) walls[dest[i]].push_back({p.id[i], nl.wall_part[e], nl.wall_hist[e]});
+  }
+  // Queued records that name a leaving parcel go with it (once per destination).
+  if (!nl.incoming.empty()) {
+    std::vector<std::pair<int64_t, int>> leaving;  // (id, destination), sorted by id
+    for (size_t i = 0; i < dest.size(); ++i)
+      if (dest[i] >= 0) leaving.emplace_back(p.id[i], dest[i]);
+    std::sort(leaving.begin(), leaving.end());
+    auto dest_of = [&leaving](int64_t id) {
+      const auto it = std::lower_bound(leaving.begin(), leaving.end(), std::pair<int64_t, int>{id, INT_MIN});
+      return it != leaving.end() && it->first == id ? it->second : -1;
+    };
+    for (const CarriedPair& c : nl.incoming.pairs) {
+      const int da = dest_of(c.id_a), db = dest_of(c.id_b);
+      if (da >= 0) pairs[da].push_back(c);
+      if (db >= 0 && db != da) pairs[db].push_back(c);
+    }
+    for (const CarriedWall& c : nl.incoming.walls)
+      if (const int dw = dest_of(c.id); dw >= 0) walls[dw].push_back(c);
   }
   std::vector<Buffer> out(n_dest);
   for (int d = 0; d < n_dest; ++d) out[d] = serialise(p, members[d], pairs[d], walls[d]);
@@ -156,6 +179,14 @@ size_t apply_migration(Particles& p, NeighborList& nl, std::span<const int> dest
     throw Error(fmt::format("migration: {} destinations for {} parcels", dest.size(), p.size()));
   check_lists(p, nl, "migration");
   for (const Buffer& b : arrived) read_counts(b);
+  // Pairs that the migration splits: the staying side keeps the history too, by id.
+  const int np = nl.offset.empty() ? 0 : static_cast<int>(p.size());
+  for (int i = 0; i < np; ++i)
+    for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
+      const int j = nl.partner[e];
+      if ((dest[i] < 0) == (dest[j] < 0) || nl.hist[e].empty()) continue;
+      nl.incoming.pairs.push_back(carried(p, i, j, nl.hist[e]));
+    }
   std::vector<int> keep;
   keep.reserve(p.size());
   for (size_t i = 0; i < dest.size(); ++i)
@@ -165,6 +196,13 @@ size_t apply_migration(Particles& p, NeighborList& nl, std::span<const int> dest
   for (const Buffer& b : arrived) n_arrived += unpack_arriving(b, p, nl);
   nl.retain(keep, n_arrived);
   return n_arrived;
+}
+
+Buffer pack_copies(const Particles& p, std::span<const int> members) {
+  for (const int i : members)
+    if (i < 0 || static_cast<size_t>(i) >= p.size())
+      throw Error(fmt::format("ghost copies: parcel {} of {}", i, p.size()));
+  return serialise(p, members, {}, {});
 }
 
 }  // namespace cgdem::parallel

@@ -72,12 +72,20 @@ int local_index(const std::vector<std::pair<int64_t, int>>& by_id, int64_t id) {
 
 void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   const int np = static_cast<int>(p.size());
+  if (ghosts > p.size())
+    throw Error(fmt::format("neighbour list: {} ghosts among {} particles", ghosts, p.size()));
+  if (ghosts > 0 && periodic.any())
+    throw Error("neighbour list: ghost parcels on periodic axes are not supported (their periodic images would be "
+                "missing)");
+  // Owned particles 0..no-1, ghosts no..np-1 (no = np without ghosts: the serial path).
+  const int no = np - static_cast<int>(ghosts);
   ++builds;
   if (periodic.any())
     for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
 
   // 1. Cell grid over the particles' bounding box (the period on periodic axes), cells at
-  //    least one interaction range wide.
+  //    least one interaction range wide. Ghosts are in the box: pairs with them are found
+  //    through the same grid.
   CellGrid g;
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo;
   double rmax = 0;
@@ -111,19 +119,34 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   }
   const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
 
-  // 2. Counting sort of the particles by cell; order[new] = old.
+  // 2. Counting sort of the owned particles by cell; order[new] = old. Ghosts keep their
+  //    places (order is the identity on them: the halo exchange fills them in the order it
+  //    appended them) and get a cell index of their own: ghost_in[ghost_start[c] ..
+  //    ghost_start[c+1]-1] are the ghosts in cell c.
   std::vector<long> cell(np);
   std::vector<int> start(ncell + 1, 0);
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < no; ++i) {
     int c[3];
     g.coords(p.x[i], c);
     ++start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<int> order(np), fill(start.begin(), start.end() - 1);
-  for (int i = 0; i < np; ++i) order[fill[cell[i]]++] = i;
-  std::vector<int> new_of_old(np);
-  for (int i = 0; i < np; ++i) new_of_old[order[i]] = i;
+  for (int i = 0; i < no; ++i) order[fill[cell[i]]++] = i;
+  for (int i = no; i < np; ++i) order[i] = i;
+  std::vector<int> ghost_start, ghost_in;
+  if (no < np) {
+    ghost_start.assign(ncell + 1, 0);
+    for (int i = no; i < np; ++i) {
+      int c[3];
+      g.coords(p.x[i], c);
+      ++ghost_start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+    }
+    std::partial_sum(ghost_start.begin(), ghost_start.end(), ghost_start.begin());
+    ghost_in.resize(np - no);
+    std::vector<int> gfill(ghost_start.begin(), ghost_start.end() - 1);
+    for (int i = no; i < np; ++i) ghost_in[gfill[cell[i]]++] = i;
+  }
   p.reorder(order);
 
   // Old lists (in old indices), kept for the history carry-over.
@@ -137,8 +160,9 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   old_wxi.swap(wall_hist);
   const bool have_old = old_off.size() == static_cast<size_t>(np) + 1;
 
-  // 3. Half pair lists: count, then fill; each owner scans the 27 cells in a fixed order
-  //    and keeps partners with a higher index.
+  // 3. Half pair lists: count, then fill; each owned particle scans the 27 cells in a
+  //    fixed order and keeps partners with a higher index, then the ghosts of those cells
+  //    (all above it). Ghosts own no entries.
   auto for_neighbours = [&](int i, auto&& visit) {
     const Vec3& x0 = p.x[i];
     int c[3];
@@ -170,13 +194,19 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
             const double reach = p.radius[i] + p.radius[j] + skin;
             if (norm2(p.x[j] + shift[code] - x0) < reach * reach) visit(j, code);
           }
+          if (no < np)
+            for (int k = ghost_start[cc]; k < ghost_start[cc + 1]; ++k) {
+              const int j = ghost_in[k];
+              const double reach = p.radius[i] + p.radius[j] + skin;
+              if (norm2(p.x[j] + shift[code] - x0) < reach * reach) visit(j, code);
+            }
         }
       }
     }
   };
   offset.assign(np + 1, 0);
 #pragma omp parallel for schedule(static) if (np >= 512)
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < no; ++i) {
     int count = 0;
     for_neighbours(i, [&](int, int) { ++count; });
     offset[i + 1] = count;
@@ -187,7 +217,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   image.resize(ne);
   hist.assign(ne, contact::History{});
 #pragma omp parallel for schedule(static) if (np >= 512)
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < no; ++i) {
     std::vector<std::pair<int, int>> found;
     found.reserve(offset[i + 1] - offset[i]);
     for_neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
@@ -225,14 +255,15 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   }
   derive();
 
-  // 4. Wall candidates: parts whose surface is within r + skin of the particle.
+  // 4. Wall candidates: parts whose surface is within r + skin of the particle (owned
+  //    particles only: a ghost's wall contacts are its owner's).
   const int nparts = static_cast<int>(walls.scene ? walls.scene->parts().size() : 0);
   std::vector<geometry::Aabb> part_box(nparts);
   for (int q = 0; q < nparts; ++q) part_box[q] = walls.part_bounds(q);
   wall_offset.assign(np + 1, 0);
   std::vector<std::vector<int>> cand(np);
 #pragma omp parallel for schedule(static) if (np >= 512)
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < no; ++i) {
     const double reach = p.radius[i] + skin;
     for (int q = 0; q < nparts; ++q)
       if (part_box[q].distance(p.x[i]) < reach && walls.part_distance(q, p.x[i]) < reach) cand[i].push_back(q);
@@ -241,7 +272,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   std::partial_sum(wall_offset.begin(), wall_offset.end(), wall_offset.begin());
   wall_part.resize(wall_offset[np]);
   wall_hist.assign(wall_offset[np], contact::History{});
-  for (int i = 0; i < np; ++i) {
+  for (int i = 0; i < no; ++i) {
     std::copy(cand[i].begin(), cand[i].end(), wall_part.begin() + wall_offset[i]);
     if (!have_old) continue;
     const int oi = order[i];
@@ -263,6 +294,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
 }
 
 void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
+  ghosts = 0;
   if (offset.empty()) return;
   const int n_old = static_cast<int>(offset.size()) - 1;
   std::vector<int> new_of_old(n_old, -1);

@@ -17,6 +17,13 @@
 // the tangential history of every pair and every particle-wall contact over to the new
 // lists, by particle identity (negated when the pair's owner changes), together with the
 // histories that parcels arriving from another rank brought along (`incoming`).
+//
+// Ghosts (MPI runs, src/parallel/mpi/distributed_dem.hpp): the last `ghosts` particles are
+// copies of other ranks' parcels near this rank's block. build() sorts only the others
+// (the owned parcels) and leaves the ghosts where they are, lists no ghost-ghost pair and
+// gives ghosts no wall candidates. Every ghost index is above every owned index, so a
+// ghost is never an owner: an owned-ghost pair is listed under the owned parcel, with its
+// history in the owned parcel's frame.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -54,6 +61,10 @@ struct CarriedWall {
 struct NeighborList {
   double skin = 0;
   Periodicity periodic;
+  // The last `ghosts` particles are ghost copies (see the header comment); 0 outside MPI
+  // runs. Set by the caller before build(); retain() resets it to 0 (the particle set
+  // changed). Not supported together with periodic axes (build() throws).
+  size_t ghosts = 0;
   // Particle pairs (CSR over owners): entries offset[i] .. offset[i+1]-1.
   std::vector<int> offset, partner;
   std::vector<uint8_t> image;     // partner image: its position is x[partner] + shift[image]
@@ -102,7 +113,7 @@ struct NeighborList {
   // increasing, as for Particles::reorder), the n_added after them are new. Keeps the
   // history of the pairs and wall contacts among the kept particles, renumbered, so that
   // the next build() carries it over; clears the derived fields, and needs_rebuild() is
-  // true until that build. Without lists (never built) it does nothing.
+  // true until that build. Without lists (never built) it does nothing but reset `ghosts`.
   void retain(const std::vector<int>& keep, size_t n_added);
   // Recomputes live, rev_pos and clears the force pass output (after build() or after
   // the saved fields were loaded).
@@ -114,6 +125,8 @@ struct NeighborList {
   bool needs_rebuild(double max_move2, size_t n, const geometry::Scene::Frame& walls) const;
   size_t pair_entries() const { return partner.size(); }
   bool valid_for(const Particles& p) const { return offset.size() == p.size() + 1; }
+  // Particles that are not ghosts: indices 0 .. owned(p) - 1.
+  size_t owned(const Particles& p) const { return p.size() - ghosts; }
   // The partner's position as seen from the owner (periodic image applied).
   Vec3 partner_x(const Particles& p, int e) const { return p.x[partner[e]] + shift[image[e]]; }
 };

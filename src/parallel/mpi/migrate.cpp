@@ -7,31 +7,16 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "parallel/mpi/exchange.hpp"
 
 namespace cgdem::parallel {
 
 namespace {
 
 constexpr int kSizeTag = 6101, kBufferTag = 6102;
+constexpr const char* kWhat = "migration";
 
-void check(int rc, const char* call) {
-  if (rc == MPI_SUCCESS) return;
-  char text[MPI_MAX_ERROR_STRING];
-  int len = 0;
-  MPI_Error_string(rc, text, &len);
-  throw Error(fmt::format("migration: {} failed: {}", call, std::string(text, len)));
-}
-
-// Returns when no rank has an error; otherwise throws on every rank (see the header).
-void raise_together(MPI_Comm comm, int rank, const std::string& error) {
-  const int mine = error.empty() ? INT_MAX : rank;
-  int first = INT_MAX;
-  check(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce");
-  if (first == INT_MAX) return;
-  if (!error.empty()) throw Error(error);
-  throw Error(fmt::format("migration stopped on every rank: rank {} found an error (its message is in its output)",
-                          first));
-}
+void check(int rc, const char* call) { check_mpi(rc, call, kWhat); }
 
 // The neighbour slot of each parcel that leaves (-1: it stays), or the first error found.
 std::string destinations(const Decomposition& d, int rank, const std::vector<int>& nb, const Particles& p,
@@ -86,29 +71,11 @@ MigrationCounts migrate(MPI_Comm comm, const Decomposition& d, Particles& p, Nei
       error = e.what();
     }
   }
-  for (int k = 0; k < static_cast<int>(out.size()) && error.empty(); ++k)
-    if (out[k].size() > static_cast<size_t>(INT_MAX))
-      error = fmt::format("migration: {} bytes for rank {} exceed an MPI message (int count)", out[k].size(), nb[k]);
-  raise_together(comm, rank, error);
+  if (error.empty()) error = oversized(out, nb, kWhat);
+  raise_together(comm, rank, error, kWhat);
 
   // 2. Sizes, then buffers, with each neighbour (every neighbour sends one of each, even empty).
-  std::vector<MPI_Request> req(2 * n);
-  std::vector<uint64_t> send_bytes(n), recv_bytes(n);
-  for (int k = 0; k < n; ++k) {
-    send_bytes[k] = out[k].size();
-    check(MPI_Irecv(&recv_bytes[k], 1, MPI_UINT64_T, nb[k], kSizeTag, comm, &req[k]), "MPI_Irecv");
-    check(MPI_Isend(&send_bytes[k], 1, MPI_UINT64_T, nb[k], kSizeTag, comm, &req[n + k]), "MPI_Isend");
-  }
-  check(MPI_Waitall(2 * n, req.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
-  std::vector<Buffer> in(n);
-  for (int k = 0; k < n; ++k) {
-    in[k].resize(recv_bytes[k]);  // at most INT_MAX: its sender checked
-    check(MPI_Irecv(in[k].data(), static_cast<int>(recv_bytes[k]), MPI_BYTE, nb[k], kBufferTag, comm, &req[k]),
-          "MPI_Irecv");
-    check(MPI_Isend(out[k].data(), static_cast<int>(send_bytes[k]), MPI_BYTE, nb[k], kBufferTag, comm, &req[n + k]),
-          "MPI_Isend");
-  }
-  check(MPI_Waitall(2 * n, req.data(), MPI_STATUSES_IGNORE), "MPI_Waitall");
+  const std::vector<Buffer> in = exchange_buffers(comm, nb, out, kSizeTag, kBufferTag, kWhat);
 
   // 3. Leavers out, arrivals in, the lists renumbered for the next build.
   MigrationCounts c;
@@ -121,14 +88,15 @@ MigrationCounts migrate(MPI_Comm comm, const Decomposition& d, Particles& p, Nei
   } catch (const Error& e) {
     error = e.what();
   }
-  raise_together(comm, rank, error);
+  raise_together(comm, rank, error, kWhat);
   return c;
 }
 
-ParcelTotals global_totals(MPI_Comm comm, const Particles& p) {
+ParcelTotals global_totals(MPI_Comm comm, const Particles& p, size_t n) {
   ParcelTotals mine, all;
-  mine.count = static_cast<int64_t>(p.size());
-  for (size_t i = 0; i < p.size(); ++i) {
+  n = std::min(n, p.size());
+  mine.count = static_cast<int64_t>(n);
+  for (size_t i = 0; i < n; ++i) {
     mine.mass += 1.0 / p.inv_mass[i];
     mine.id_checksum += static_cast<uint64_t>(p.id[i]);
   }

@@ -41,6 +41,7 @@ struct ParcelTotals {
   double mass = 0;          // sum of 1 / inv_mass [kg] (rounding depends on the order)
   uint64_t id_checksum = 0;  // sum of the ids modulo 2^64: exact, order-free
 };
-ParcelTotals global_totals(MPI_Comm comm, const Particles& p);
+// Over the parcels 0..n-1 of each rank (all by default; with ghosts, pass the owned count).
+ParcelTotals global_totals(MPI_Comm comm, const Particles& p, size_t n = SIZE_MAX);
 
 }  // namespace cgdem::parallel
