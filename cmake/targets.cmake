@@ -47,6 +47,13 @@ list(REMOVE_ITEM CGDEM_APP_SRCS ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
 add_library(cgdem_app STATIC ${CGDEM_APP_SRCS})
 target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling)
 target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
+# `mpirun -np N cgdem run` (src/app/mpi): only in builds with MPI; a single-process run
+# never initialises MPI.
+if(CGDEM_MPI)
+  target_sources(cgdem_app PRIVATE ${PROJECT_SOURCE_DIR}/src/app/mpi/run_distributed.cpp)
+  target_link_libraries(cgdem_app PUBLIC cgdem_parallel)
+  target_compile_definitions(cgdem_app PUBLIC CGDEM_WITH_MPI)
+endif()
 # The analysis on top of runs (coarse-grain scaling, spectra, convergence studies).
 cgdem_module(cgdem_scaling DIRS scaling DEPS cgdem_app PkgConfig::FFTW3 Eigen3::Eigen)
 add_executable(cgdem ${PROJECT_SOURCE_DIR}/src/app/main.cpp)

@@ -68,7 +68,11 @@ void write_checkpoint(const std::string& path, const std::string& config, const 
 std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::FluidState* air, DieDiagnostics& diag,
                             RunCounters& c) {
   io::ArchiveReader r(read_all(path), path);
-  if (r.get<uint64_t>() != kMagic) throw Error(path + " is not a cgdem checkpoint");
+  const uint64_t magic = r.get<uint64_t>();
+  if (magic == kPortableCheckpointMagic)
+    throw Error(path + " was written by a run over MPI ranks: restart it under mpirun (mpirun -np N cgdem run ... "
+                       "--restart, any N >= 1)");
+  if (magic != kMagic) throw Error(path + " is not a cgdem checkpoint");
   const uint32_t version = r.get<uint32_t>();
   if (version != kVersion && version != 1)
     throw Error(fmt::format("{}: checkpoint format version {} (this build reads 1 and {})", path, version, kVersion));
@@ -109,6 +113,12 @@ std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::Flui
   }
   r.tag("end");
   return config;
+}
+
+bool is_portable_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  uint64_t magic = 0;
+  return in.read(reinterpret_cast<char*>(&magic), sizeof magic) && magic == kPortableCheckpointMagic;
 }
 
 uint64_t state_digest(const DemSolver& dem, const fluid::FluidState* air) {

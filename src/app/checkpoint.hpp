@@ -21,6 +21,12 @@ struct RunCounters {
   double max_divergence_walls = 0;  // the same over cells entirely inside walls (not imposed)
 };
 
+// The first 8 bytes of a checkpoint written by a run over MPI ranks (mpi/run_distributed.hpp):
+// parcels in id order with id-keyed histories, which restart on any number of ranks.
+inline constexpr uint64_t kPortableCheckpointMagic = 0x70706b636d656467ULL;  // "gdemckpp"
+// True when the file starts with kPortableCheckpointMagic (false if it cannot be read).
+bool is_portable_checkpoint(const std::string& path);
+
 void write_checkpoint(const std::string& path, const std::string& config, const DemSolver& dem,
                       const fluid::FluidState* air, const DieDiagnostics& diag, const RunCounters& counters);
 // Returns the configuration stored with the checkpoint. Throws cgdem::Error when the file

@@ -10,12 +10,16 @@ std::string energy_csv_header() {
 }
 
 std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls) {
+  return energy_csv_row(dem.time(), e, static_cast<long>(dem.particles().size()), dem.removed(), inside_walls);
+}
+
+std::string energy_csv_row(double t, const EnergyBudget& e, long particles, long removed, long inside_walls) {
   return fmt::format("{:.9g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
                      "{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}",
-                     dem.time(), e.kinetic_translational, e.kinetic_rotational, e.kinetic_rotational_originals,
+                     t, e.kinetic_translational, e.kinetic_rotational, e.kinetic_rotational_originals,
                      e.potential, e.elastic, e.dissipated_damping, e.dissipated_friction, e.work_walls,
                      e.work_fluid, e.balance(), e.momentum.x, e.momentum.y, e.momentum.z, e.mass,
-                     dem.particles().size(), dem.removed(), inside_walls);
+                     particles, removed, inside_walls);
 }
 
 }  // namespace cgdem::app

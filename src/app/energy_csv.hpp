@@ -16,5 +16,7 @@ std::string energy_csv_header();
 
 // One row (no trailing newline). `e` must already carry work_fluid (DemSolver::fluid_work()).
 std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls);
+// The same row from its values (a run over MPI ranks: totals over the ranks).
+std::string energy_csv_row(double t, const EnergyBudget& e, long particles, long removed, long inside_walls);
 
 }  // namespace cgdem::app

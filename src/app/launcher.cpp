@@ -39,9 +39,8 @@ void require_single_process(const LaunchedAs& l, const std::string& command) {
   throw Error(fmt::format(
       "`cgdem {}` was started as {} processes ({}={}), but it runs in one process: each copy would run the "
       "whole case and write the same output folder. Start it without an MPI launcher (or with -np 1) and give it "
-      "the cores as OpenMP threads (--threads N). The MPI engine of issue 6 is not yet part of `cgdem {}` "
-      "(docs/scale_out.md)",
-      command, l.size, l.variable, l.size, command));
+      "the cores as OpenMP threads (--threads N); only `cgdem run` runs over MPI ranks (in a build with MPI)",
+      command, l.size, l.variable, l.size));
 }
 
 }  // namespace cgdem::app

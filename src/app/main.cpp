@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "app/checkpoint.hpp"
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
@@ -19,6 +20,9 @@
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
 #include "scaling/spectrum_command.hpp"
+#ifdef CGDEM_WITH_MPI
+#include "app/mpi/run_distributed.hpp"
+#endif
 
 // OpenBLAS (behind CHOLMOD, used on the coarsest multigrid level) starts its own pthreads,
 // which keep spinning after each call and take the cores from the OpenMP threads of the DEM
@@ -89,9 +93,17 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (openblas_set_num_threads) openblas_set_num_threads(1);
   const auto launched = cgdem::app::launched_as();
+#ifdef CGDEM_WITH_MPI
+  // `cgdem run` over MPI ranks: under a launcher with N > 1 processes, or to continue
+  // from a checkpoint that a run over ranks wrote (on any number of ranks, 1 included).
+  if (*run && (launched.size > 1 || (!restart.empty() && cgdem::app::is_portable_checkpoint(restart)))) {
+    if (threads > 0) omp_set_num_threads(threads);
+    return cgdem::app::run_distributed_main(argc, argv, {case_file, sets, output, restart});
+  }
+#endif
   try {
-    // Under `mpirun -np N` (N > 1) every command stops before doing anything; only the
-    // first process says why, so the message is not repeated N times.
+    // Under `mpirun -np N` (N > 1) every other command stops before doing anything; only
+    // the first process says why, so the message is not repeated N times.
     try {
       cgdem::app::require_single_process(launched, app.get_subcommands().front()->get_name());
     } catch (const cgdem::Error&) {

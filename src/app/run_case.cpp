@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "app/checkpoint.hpp"
+#include "app/run_checks.hpp"
 #include "app/energy_csv.hpp"
 #include "app/run_metrics.hpp"
 #include "core/error.hpp"
@@ -26,21 +27,9 @@ namespace cgdem::app {
 
 namespace {
 
-// Stops the run on NaN/Inf or a runaway speed, naming the particle, step and time.
+// The health checks of the DEM (run_checks.hpp) over all its particles.
 void check_particles(const DemSolver& dem, double max_speed) {
-  const Particles& p = dem.particles();
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec3 &x = p.x[i], &v = p.v[i];
-    bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) && std::isfinite(v.x) &&
-                  std::isfinite(v.y) && std::isfinite(v.z);
-    if (!finite || norm(v) > max_speed)
-      throw RunError(fmt::format(
-          "step {}, t = {:.6g} s: particle id {} has {} (x = [{:.4g}, {:.4g}, {:.4g}] m, |v| = {:.4g} m/s; "
-          "output.max_speed = {:g}). The run stopped; the last good state is last_good.h5 in the output folder "
-          "(checkpoint.bin continues from there with --restart).",
-          dem.steps(), dem.time(), p.id[i], finite ? "a runaway velocity" : "a non-finite position or velocity",
-          x.x, x.y, x.z, norm(v), max_speed));
-  }
+  app::check_particles(dem.particles(), dem.particles().size(), dem.steps(), dem.time(), max_speed);
 }
 
 // Stops the run on a non-finite or runaway air velocity or pressure, naming the cell.
@@ -66,12 +55,7 @@ void check_air(const fluid::FluidState& air, double max_speed, long step) {
 
 // Particles whose centre lies inside a wall (tunnelled): counted, not hidden.
 long count_inside_walls(const DemSolver& dem) {
-  if (dem.scene().empty()) return 0;
-  auto frame = dem.scene().at(dem.time());
-  long n = 0;
-  for (const auto& x : dem.particles().x)
-    if (frame.phi(x) < 0) ++n;
-  return n;
+  return app::count_inside_walls(dem.scene(), dem.time(), dem.particles(), dem.particles().size());
 }
 
 // Cell-centred air fields for a snapshot: eps, p, wall fraction alpha, velocity.

@@ -7,6 +7,9 @@
 #include "app/run_case.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
+#ifdef CGDEM_WITH_MPI
+#include "app/mpi/run_distributed.hpp"
+#endif
 
 namespace cgdem::app {
 
@@ -35,7 +38,15 @@ int run_case_file(const RunRequest& r) {
   AirCase air = read_air_case(cfg, c.dem);
   DiagnosticsSpec diag = read_diagnostics(cfg);
   cfg.check_unused();
-  return run_case(c, air, diag, {r.case_file, cfg.resolved_toml(), r.restart});
+  const RunInfo info{r.case_file, cfg.resolved_toml(), r.restart};
+  if (r.distributed) {
+#ifdef CGDEM_WITH_MPI
+    return run_case_distributed(MPI_COMM_WORLD, c, air, diag, info);
+#else
+    throw Error("this build of cgdem has no MPI (configured with CGDEM_MPI=OFF or without OpenMPI)");
+#endif
+  }
+  return run_case(c, air, diag, info);
 }
 
 // The configuration run_case_file would write to config.resolved.toml (validated, nothing

@@ -11,6 +11,9 @@ struct RunRequest {
   std::vector<std::string> sets;  // key.path=value overrides, applied in order
   std::string output;             // overrides output.dir when not empty
   std::string restart;            // checkpoint to continue from, or empty
+  // Over the ranks of MPI_COMM_WORLD (mpi/run_distributed.hpp; builds with CGDEM_MPI,
+  // MPI initialised by the caller).
+  bool distributed = false;
 };
 
 // Returns the process exit status (0 on success). Throws cgdem::Error on bad input and

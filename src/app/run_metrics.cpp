@@ -50,12 +50,17 @@ Table read_table(const std::string& path) {
 
 io::Metrics run_metrics(const std::string& dir, const DemSolver& dem, bool with_diagnostics,
                         std::optional<std::pair<double, double>> front_impact) {
-  const EnergyBudget e = dem.energy();
-  io::Metrics m{{"end_time_s", dem.time()},
-                {"particles", double(dem.particles().size())},
+  return run_metrics(dir, dem.time(), static_cast<long>(dem.particles().size()), dem.energy(), dem.removed(),
+                     with_diagnostics, front_impact);
+}
+
+io::Metrics run_metrics(const std::string& dir, double t, long particles, const EnergyBudget& e, long removed,
+                        bool with_diagnostics, std::optional<std::pair<double, double>> front_impact) {
+  io::Metrics m{{"end_time_s", t},
+                {"particles", double(particles)},
                 {"solid_mass_kg", e.mass},
                 {"E_kin_trans_J", e.kinetic_translational},
-                {"removed", double(dem.removed())}};
+                {"removed", double(removed)}};
   if (!with_diagnostics) return m;
   for (auto& kv : die_metrics(dir + "/diagnostics.csv", front_impact)) m.push_back(kv);
   return m;

@@ -24,5 +24,8 @@ io::Metrics die_metrics(const std::string& diagnostics_csv, std::optional<std::p
 // Reads DIR/diagnostics.csv (if `with_diagnostics`) and returns the metrics.
 io::Metrics run_metrics(const std::string& dir, const DemSolver& dem, bool with_diagnostics,
                         std::optional<std::pair<double, double>> front_impact);
+// The same from the totals (a run over MPI ranks: e = global energy, counts over the ranks).
+io::Metrics run_metrics(const std::string& dir, double t, long particles, const EnergyBudget& e, long removed,
+                        bool with_diagnostics, std::optional<std::pair<double, double>> front_impact);
 
 }  // namespace cgdem::app

@@ -37,6 +37,32 @@ Decomposition::Decomposition(const geometry::Aabb& box, Dims dims, std::array<bo
   }
 }
 
+Decomposition::Decomposition(const geometry::Aabb& box, const Cuts& cuts, std::array<bool, 3> periodic)
+    : Decomposition(box, Dims{static_cast<int>(std::max<size_t>(cuts[0].size(), 2) - 1),
+                              static_cast<int>(std::max<size_t>(cuts[1].size(), 2) - 1),
+                              static_cast<int>(std::max<size_t>(cuts[2].size(), 2) - 1)},
+                    periodic) {
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double>& c = cuts[a];
+    if (c.size() < 2 || c.front() != box_.lo[a] || c.back() != box_.hi[a])
+      throw Error(fmt::format("domain decomposition: the cuts along {} must run from the box's {:g} to {:g} m", "xyz"[a],
+                              box_.lo[a], box_.hi[a]));
+    for (size_t m = 1; m < c.size(); ++m)
+      if (!(c[m] > c[m - 1]))
+        throw Error(fmt::format("domain decomposition: the cuts along {} must increase strictly ({:g} then {:g} m)",
+                                "xyz"[a], c[m - 1], c[m]));
+    cut_[a] = c;
+  }
+  uniform_ = false;
+}
+
+double Decomposition::narrowest_block() const {
+  double w = INFINITY;
+  for (int a = 0; a < 3; ++a)
+    for (size_t m = 1; m < cut_[a].size(); ++m) w = std::min(w, cut_[a][m] - cut_[a][m - 1]);
+  return w;
+}
+
 Dims Decomposition::coords_of(int rank) const {
   if (rank < 0 || rank >= ranks())
     throw Error(fmt::format("domain decomposition: rank {} is not one of the {} ranks of {} x {} x {} blocks", rank,
@@ -49,6 +75,8 @@ int Decomposition::index_along(int a, double x) const {
   const int p = dims_[a];
   if (!(x > c.front())) return 0;  // also NaN
   if (x >= c.back()) return p - 1;
+  if (!uniform_)  // the block m with c[m] <= x < c[m+1]
+    return static_cast<int>(std::upper_bound(c.begin() + 1, c.end() - 1, x) - (c.begin() + 1));
   int m = std::clamp(static_cast<int>((x - c.front()) / (c.back() - c.front()) * p), 0, p - 1);
   // The quotient can round across a cut: settle against the cut values themselves, so
   // that owner_of() and block() never disagree on a point lying on a cut.
@@ -126,6 +154,40 @@ Dims choose_dims(int n_ranks, const Vec3& extent) {
     }
   }
   return best;
+}
+
+Decomposition::Cuts balanced_cuts(const geometry::Aabb& box, Dims dims, const std::vector<Vec3>& points,
+                                  double min_width) {
+  Decomposition::Cuts cuts;
+  for (int a = 0; a < 3; ++a) {
+    const int p = dims[a];
+    const double lo = box.lo[a], hi = box.hi[a];
+    if (p < 1) throw Error(fmt::format("domain decomposition: {} blocks along {}", p, "xyz"[a]));
+    if (p * min_width > hi - lo)
+      throw Error(fmt::format("domain decomposition: {} blocks along {} of at least {:.4g} m (one interaction range) "
+                              "do not fit in the box's {:.4g} m; use fewer ranks",
+                              p, "xyz"[a], min_width, hi - lo));
+    std::vector<double> v;
+    v.reserve(points.size());
+    for (const Vec3& x : points)
+      if (std::isfinite(x[a])) v.push_back(std::clamp(x[a], lo, hi));
+    std::sort(v.begin(), v.end());
+    std::vector<double>& c = cuts[a];
+    c.assign(p + 1, lo);
+    c[p] = hi;
+    for (int m = 1; m < p; ++m) {
+      double q = lo + (hi - lo) * m / p;  // no points: even
+      if (!v.empty()) {
+        const size_t k = std::min(v.size() - 1, v.size() * static_cast<size_t>(m) / static_cast<size_t>(p));
+        q = k > 0 ? 0.5 * (v[k - 1] + v[k]) : v[k];
+      }
+      c[m] = q;
+    }
+    // At least min_width apart, and inside [lo + m w, hi - (p - m) w]: forward, then back.
+    for (int m = 1; m < p; ++m) c[m] = std::max(c[m], c[m - 1] + min_width);
+    for (int m = p - 1; m >= 1; --m) c[m] = std::min(c[m], c[m + 1] - min_width);
+  }
+  return cuts;
 }
 
 }  // namespace cgdem::parallel

@@ -31,6 +31,15 @@ class Decomposition {
  public:
   // Throws cgdem::Error for an empty or non-finite box or a non-positive count of blocks.
   Decomposition(const geometry::Aabb& box, Dims dims, std::array<bool, 3> periodic = {false, false, false});
+  // Uneven blocks: cuts[a] lists c_a(0) = box.lo_a < c_a(1) < ... < c_a(p_a) = box.hi_a
+  // (load balance: balanced_cuts()). Throws cgdem::Error when a list does not span the box
+  // or does not increase strictly.
+  using Cuts = std::array<std::vector<double>, 3>;
+  Decomposition(const geometry::Aabb& box, const Cuts& cuts, std::array<bool, 3> periodic = {false, false, false});
+  const Cuts& cuts() const { return cut_; }
+  // The narrowest block along any axis [m] (a block must be wider than one interaction
+  // range, so that a parcel's ghosts and moves reach only the neighbouring ranks).
+  double narrowest_block() const;
 
   const geometry::Aabb& box() const { return box_; }
   const Dims& dims() const { return dims_; }
@@ -58,6 +67,7 @@ class Decomposition {
   Dims dims_;
   Periodicity wrap_;  // the box on the periodic axes
   std::array<std::vector<double>, 3> cut_;  // cut_[a][m] = c_a(m), m = 0..p_a
+  bool uniform_ = true;                     // equal blocks: index_along() may guess by division
 };
 
 // The block counts (px, py, pz), px py pz = n_ranks, whose cuts through a box of this
@@ -67,5 +77,15 @@ class Decomposition {
 // not cut across its thickness). Ties go to the larger px, then the larger py.
 // Throws cgdem::Error for n_ranks < 1 or an extent that is not positive.
 Dims choose_dims(int n_ranks, const Vec3& extent);
+
+// Cuts for dims blocks of the box that share out the points (parcel centres, or any cost
+// samples) evenly: along each axis with p_a > 1 blocks, the cuts sit at the quantiles
+// m / p_a of the points' coordinates (each axis on its own: even shares for cuts along one
+// axis, close to even for a product of axes when the coordinates are nearly independent).
+// No block is narrower than min_width [m] (one interaction range): quantiles that would
+// make one are moved apart, and a box too small for p_a blocks of min_width throws
+// cgdem::Error. Without points the cuts are even.
+Decomposition::Cuts balanced_cuts(const geometry::Aabb& box, Dims dims, const std::vector<Vec3>& points,
+                                  double min_width);
 
 }  // namespace cgdem::parallel

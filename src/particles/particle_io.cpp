@@ -2,19 +2,25 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace cgdem {
 
-io::ParticleTable to_table(const Particles& p) {
+io::ParticleTable to_table(const Particles& p, size_t n) {
+  std::vector<size_t> order(std::min(n, p.size()));
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return p.id[a] < p.id[b]; });
   io::ParticleTable t;
-  t.id = p.id;
-  t.species = p.species;
-  t.x = p.x;
-  t.v = p.v;
-  t.omega = p.omega;
-  t.d.resize(p.size());
-  for (size_t i = 0; i < p.size(); ++i) t.d[i] = 2 * p.radius[i];
+  for (size_t i : order) {
+    t.id.push_back(p.id[i]);
+    t.species.push_back(p.species[i]);
+    t.x.push_back(p.x[i]);
+    t.v.push_back(p.v[i]);
+    t.omega.push_back(p.omega[i]);
+    t.d.push_back(2 * p.radius[i]);
+  }
   return t;
 }
 

@@ -1,0 +1,19 @@
+// Health checks of a running case, shared by the single-process run (run_case.cpp) and
+// the run over MPI ranks (mpi/run_distributed.cpp), which applies them to each rank's own
+// parcels.
+#pragma once
+#include <cstddef>
+
+#include "geometry/scene.hpp"
+#include "particles/particles.hpp"
+
+namespace cgdem::app {
+
+// Throws RunError naming the parcel, the step and the time when one of the first n parcels
+// has a non-finite position or velocity or moves faster than max_speed (a blow-up).
+void check_particles(const Particles& p, size_t n, long step, double t, double max_speed);
+
+// Parcels among the first n whose centre lies inside a wall at time t (tunnelled).
+long count_inside_walls(const geometry::Scene& scene, double t, const Particles& p, size_t n);
+
+}  // namespace cgdem::app
