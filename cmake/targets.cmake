@@ -39,6 +39,18 @@ if(CGDEM_MPI)
 else()
   cgdem_module(cgdem_parallel DIRS src/parallel DEPS cgdem_dem)
 endif()
+# The air side of the decomposition (issue 6, items 2-3): grid blocks, halo exchange of the
+# fluid fields and the distributed pressure solve (SUNDIALS' MPI NVECTOR, optional hypre).
+if(CGDEM_MPI)
+  cgdem_module(cgdem_air_mpi DIRS src/air_mpi DEPS cgdem_fluid cgdem_parallel SUNDIALS::nvecparallel MPI::MPI_CXX)
+  if(HYPRE_INCLUDE_DIR AND HYPRE_LIB)
+    target_include_directories(cgdem_air_mpi PUBLIC ${HYPRE_INCLUDE_DIR})
+    target_link_libraries(cgdem_air_mpi PUBLIC ${HYPRE_LIB})
+    target_compile_definitions(cgdem_air_mpi PRIVATE CGDEM_HAVE_HYPRE)
+  else()
+    message(STATUS "cgdem: hypre not found: the distributed pressure solve has no 'pfmg' preconditioner")
+  endif()
+endif()
 
 # The command line: its case readers, run loop and diagnostics are a library (tested in
 # tests/app); the executable is main.cpp.
@@ -86,6 +98,7 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(parallel cgdem_parallel)
   if(CGDEM_MPI)
     include(${PROJECT_SOURCE_DIR}/tests/parallel/mpi/mpi_tests.cmake)
+    include(${PROJECT_SOURCE_DIR}/tests/parallel/mpi_air/mpi_air_tests.cmake)
   endif()
   # End-to-end checks of the command line (config errors, demo smoke run).
   if(EXISTS ${PROJECT_SOURCE_DIR}/tests/cli/cli_tests.cmake)
