@@ -60,6 +60,7 @@ int run(int argc, char** argv) {
 
   dem.step();  // first build and forces, not timed
   dem.timers().reset();
+  hook.timers().reset();
   MPI_Barrier(MPI_COMM_WORLD);
   Stopwatch clock;
   const std::clock_t cpu0 = std::clock();
@@ -85,6 +86,7 @@ int run(int argc, char** argv) {
     fmt::print("processor time {:.3f} s summed over the ranks ({:.2f} of {} ranks busy)\n", cpu_sum, cpu_sum / wall,
                size);
     fmt::print("{}", dem.timers().table("per-phase time (rank 0; the exchanges are in 'neighbour lists')"));
+    fmt::print("{}", hook.timers().table("inside 'neighbour lists': the hook's calls (rank 0)"));
     fmt::print("state: E_kin {:.17g} E_pot {:.17g} dissipated {:.17g} + {:.17g} J\n",
                e.kinetic_translational + e.kinetic_rotational, e.potential, e.dissipated_damping,
                e.dissipated_friction);

@@ -439,6 +439,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
                       run_metrics(c.output.dir, dem->time(), present, e, removed, diag_spec.enabled,
                                   diag.front_impact()));
     fmt::print("\n{}", dem->timers().table("per-phase time (DEM, rank 0)"));
+    fmt::print("{}", dist->timers().table("inside 'neighbour lists': exchanges (rank 0)"));
     fmt::print("{}", out_timers.table("per-phase time (output, rank 0)"));
     fmt::print("DEM steps {}, wall {:.1f} s, {:.3g} particle-steps/s on {} ranks, neighbour-list builds {}\n",
                dem->steps(), wall, particle_steps / std::max(wall, 1e-9), R.size, builds);

@@ -36,6 +36,9 @@ bool same_values(const contact::History& a, const contact::History& b) {
 
 DistributedDem::DistributedDem(MPI_Comm comm, const Decomposition& d, DemSolver& dem)
     : comm_(comm), d_(d), dem_(dem) {
+  t_vote_ = timers_.id("rebuild vote");
+  t_refresh_ = timers_.id("ghost refresh");
+  t_build_ = timers_.id("build exchanges");
   int size = 0;
   check(MPI_Comm_rank(comm, &rank_), "MPI_Comm_rank");
   check(MPI_Comm_size(comm, &size), "MPI_Comm_size");
@@ -68,12 +71,14 @@ DistributedDem::~DistributedDem() {
 }
 
 bool DistributedDem::any(bool local_rebuild) {
+  auto scope = timers_.scope(t_vote_);
   int mine = local_rebuild ? 1 : 0, all = 0;
   check(MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
   return all != 0;
 }
 
 void DistributedDem::drop_ghosts(Particles& p, NeighborList& nl) {
+  auto scope = timers_.scope(t_build_);
   const size_t n_owned = nl.owned(p);
   if (nl.ghosts > 0 && (p.size() != n_total_ || n_owned != n_owned_))
     throw Error(fmt::format("distributed DEM: rank {} holds {} particles, {} of them ghosts, but its last build left "
@@ -113,6 +118,7 @@ void DistributedDem::select_ghosts(const Particles& p, size_t n_owned) {
 }
 
 void DistributedDem::rebuild(Particles& p, NeighborList& nl, const geometry::Scene::Frame& walls) {
+  auto scope = timers_.scope(t_build_);
   if (nl.ghosts != 0) throw Error("distributed DEM: rebuild() before drop_ghosts()");
   ++counters_.builds;
   // 1. Every parcel to the rank of its block, with its histories.
@@ -186,6 +192,7 @@ void DistributedDem::rebuild(Particles& p, NeighborList& nl, const geometry::Sce
 }
 
 void DistributedDem::refresh_ghosts(Particles& p) {
+  auto scope = timers_.scope(t_refresh_);
   if (p.size() != n_total_)
     throw Error(fmt::format("distributed DEM: rank {} holds {} particles, its last build {} (parcels added between "
                             "steps? add them before the first step)",

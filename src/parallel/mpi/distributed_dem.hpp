@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/timers.hpp"
 #include "parallel/decomposition.hpp"
 #include "parallel/mpi/migrate.hpp"
 #include "solvers/dem/dem_solver.hpp"
@@ -66,6 +67,11 @@ class DistributedDem final : public DomainExchange {
     long records_twice = 0, records_differing = 0;
   };
   const Counters& counters() const { return counters_; }
+  // This rank's time in the hook's calls (all inside the DEM's "neighbour lists" phase):
+  // "rebuild vote" (the global OR: it waits for the slowest rank, so load imbalance shows
+  // here), "ghost refresh" (pack, exchange, unpack) and "build exchanges" (drop ghosts,
+  // migrate, ghost copies, list build).
+  PhaseTimers& timers() { return timers_; }
   int rank() const { return rank_; }
   const Decomposition& decomposition() const { return d_; }
   MPI_Comm comm() const { return comm_; }
@@ -85,6 +91,8 @@ class DistributedDem final : public DomainExchange {
   size_t n_owned_ = 0, n_total_ = 0;     // at the last build
   std::vector<std::vector<double>> sbuf_, rbuf_;
   Counters counters_;
+  PhaseTimers timers_;
+  int t_vote_, t_refresh_, t_build_;
 };
 
 // Diagnostics over all ranks (collective over comm; every rank gets the result).
