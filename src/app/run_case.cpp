@@ -14,6 +14,7 @@
 #include "app/run_checks.hpp"
 #include "app/energy_csv.hpp"
 #include "app/run_metrics.hpp"
+#include "app/run_schedule.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -146,18 +147,9 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
   // Time series: on a restart the rows after the checkpoint's time are dropped and the
   // file continues; otherwise it starts afresh.
+  const std::string series_comment = "case " + info.case_file;
   auto open_csv = [&](const std::string& name, const std::string& header) {
-    const std::string path = (out / name).string();
-    if (restart && std::filesystem::exists(path)) {
-      truncate_csv_after(path, dem->time());
-      std::FILE* f = std::fopen(path.c_str(), "a");
-      if (!f) throw Error("cannot append to " + path);
-      return f;
-    }
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw Error("cannot write " + path);
-    std::fprintf(f, "# cgdem %s, case %s\n%s\n", kGitRevision, info.case_file.c_str(), header.c_str());
-    return f;
+    return open_series(c.output.dir, name, header, series_comment, restart, dem->time());
   };
   std::FILE* energy = open_csv("energy.csv", energy_csv_header());
   std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
@@ -220,28 +212,16 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     write_snapshot();
     write_checkpoint_now();
   }
-  const bool tty = isatty(STDOUT_FILENO);
-  const double span = c.t_end - c.t_start, tiny = 1e-9 * c.dem.dt;
-  const double t_first = dem->time();  // start of this run (later than t_start after a restart)
   // The run loop's own phases (everything that is neither DEM, coupling nor air).
   PhaseTimers out_timers;
   const int t_observe = out_timers.id("die diagnostics"), t_series = out_timers.id("CSV series");
   const int t_snap = out_timers.id("snapshots"), t_ckpt = out_timers.id("checkpoints");
-  // Output times are multiples of the intervals counted from t_start (also after a restart).
-  auto next_after = [&](double interval) {
-    return c.t_start + interval * (std::floor((dem->time() - c.t_start) / interval + 1e-9) + 1);
-  };
-  double next_energy = next_after(c.output.energy_interval), next_snap = next_after(c.output.snapshot_interval);
-  double next_checkpoint = next_after(c.output.checkpoint_interval);
-  double next_diag = next_after(diag_spec.interval);
-  // The settled state: a run that starts before the shoe moves (t < 0) keeps a checkpoint
-  // of t = 0 as settled.bin, so the filling can be rerun without settling again.
-  bool settled_pending = dem->time() < -tiny;
+  OutputSchedule schedule(c, diag_spec, dem->time());
+  ProgressLine progress(c, dem->time(), isatty(STDOUT_FILENO));
+  const bool tty = isatty(STDOUT_FILENO);
   const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));  // vacuum: diagnostics every 0.1 ms
-  Stopwatch clock;
-  double last_progress = 0;
   long particle_steps = 0;
-  while (dem->time() < c.t_end - tiny) {
+  while (!schedule.finished(dem->time())) {
     if (with_air) {
       const long before = dem->steps();
       CoupledStepStats st = coupled->step();
@@ -264,62 +244,42 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       }
     }
     const double t = dem->time();
-    const bool last = t >= c.t_end - tiny;
-    const bool snap = t >= next_snap - tiny || last;
-    if (t >= next_energy - tiny || snap) {
+    const OutputSchedule::Due due = schedule.after_step(t);
+    if (due.energy) {
       auto ts = out_timers.scope(t_series);
       check_health();
       write_energy();
-      while (next_energy <= t + tiny) next_energy += c.output.energy_interval;
     }
-    if (diag_csv && (t >= next_diag - tiny || last)) {
+    if (due.diagnostics) {
       auto ts = out_timers.scope(t_series);
       write_diagnostics();
-      while (next_diag <= t + tiny) next_diag += diag_spec.interval;
     }
-    if (snap) {
+    if (due.snapshot) {
       auto ts = out_timers.scope(t_snap);
       write_snapshot();
-      while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
     }
-    if (t >= next_checkpoint - tiny || last) {
+    if (due.checkpoint) {
       auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint_now();
-      while (next_checkpoint <= t + tiny) next_checkpoint += c.output.checkpoint_interval;
     }
-    if (settled_pending && t >= -tiny) {
+    if (due.settled) {  // the state of t = 0, to rerun the filling without settling again
       auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint((out / "settled.bin").string(), info.resolved_config, *dem, with_air ? &air : nullptr, diag,
                        counters);
       fmt::print("{}settled state at t = {:.6g} s saved: {} (rerun the filling with --restart)\n", tty ? "\n" : "", t,
                  (out / "settled.bin").string());
-      settled_pending = false;
     }
-    const double wall = clock.seconds();
-    if ((tty && wall - last_progress > 0.5) || (!tty && wall - last_progress > c.output.progress_interval) || last) {
-      last_progress = wall;
-      const double frac = (t - c.t_start) / span, rate = particle_steps / std::max(wall, 1e-9);
-      // ETA from this run's own pace (a restart's progress began at t_first, not t_start).
-      const double done = (t - t_first) / std::max(c.t_end - t_first, 1e-300);
-      std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t, 100 * frac,
-                                     rate, wall * (1 - done) / std::max(done, 1e-9));
-      if (tty) fmt::print("\r{}   ", line), std::fflush(stdout);
-      else fmt::print("{}\n", line), std::fflush(stdout);  // batch logs see progress as it happens
-    }
+    progress.update(t, particle_steps, due.last);
   }
-  if (tty) fmt::print("\n");
+  progress.finish();
   std::fclose(energy);
   if (diag_csv) std::fclose(diag_csv);
 
-  if (diag_spec.enabled) {
-    std::string rows = "id,t,speed_down,mass\n";
-    for (const auto& im : diag.impacts()) rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
-    io::write_file_atomic((out / "impacts.csv").string(), rows);
-  }
+  if (diag_spec.enabled) write_impacts(c.output.dir, diag);
 
-  const double wall = clock.seconds();
+  const double wall = progress.seconds();
   io::write_metrics((out / "metrics.csv").string(),
                     run_metrics(c.output.dir, *dem, diag_spec.enabled, diag.front_impact()));
   EnergyBudget e = dem->energy();
@@ -344,14 +304,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
              particle_steps / std::max(wall, 1e-9), dem->neighbor_builds());
   fmt::print("particles {} (left the domain: {}, centre inside a wall: {}), solid mass {:.6g} kg\n",
              dem->particles().size(), dem->removed(), count_inside_walls(*dem), e.mass);
-  if (diag_spec.enabled) {
-    auto front = diag.front_impact();
-    if (front)
-      fmt::print("powder front reached the die floor at t = {:.4f} s; mean impact velocity {:.3f} m/s (first {:g} s)\n",
-                 front->first, front->second, diag_spec.impact_window);
-    else
-      fmt::print("the powder has not reached the die floor yet\n");
-  }
+  if (diag_spec.enabled) print_front(diag, diag_spec);
   fmt::print("state digest {:016x} at t = {:.9g} s\n", state_digest(*dem, with_air ? &air : nullptr), dem->time());
   fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
              "checkpoint.bin, config.resolved.toml\n",

@@ -14,6 +14,7 @@
 #include "app/energy_csv.hpp"
 #include "app/run_checks.hpp"
 #include "app/run_metrics.hpp"
+#include "app/run_schedule.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -242,19 +243,9 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
 
   std::unique_ptr<io::SnapshotSeries> snapshots;
   std::FILE *energy = nullptr, *diag_csv = nullptr;
+  const std::string series_comment = fmt::format("case {}, {} MPI ranks", info.case_file, R.size);
   auto open_csv = [&](const std::string& name, const std::string& hdr) {
-    const std::string path = (out / name).string();
-    if (restart && fs::exists(path)) {
-      truncate_csv_after(path, dem->time());
-      std::FILE* f = std::fopen(path.c_str(), "a");
-      if (!f) throw Error("cannot append to " + path);
-      return f;
-    }
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw Error("cannot write " + path);
-    std::fprintf(f, "# cgdem %s, case %s, %d MPI ranks\n%s\n", kGitRevision, info.case_file.c_str(), R.size,
-                 hdr.c_str());
-    return f;
+    return open_series(c.output.dir, name, hdr, series_comment, restart, dem->time());
   };
   together(R, "output files", true, [&] {
     snapshots = std::make_unique<io::SnapshotSeries>(c.output.dir, "particles", attrs, restart);
@@ -342,24 +333,16 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     write_snapshot();
     write_checkpoint_to(checkpoint);
   }
-  const bool tty = root && isatty(STDOUT_FILENO);
-  const double span = c.t_end - c.t_start, tiny = 1e-9 * c.dem.dt;
-  const double t_first = dem->time();
   PhaseTimers out_timers;
   const int t_observe = out_timers.id("die diagnostics"), t_series = out_timers.id("CSV series");
   const int t_snap = out_timers.id("snapshots"), t_ckpt = out_timers.id("checkpoints");
-  auto next_after = [&](double interval) {
-    return c.t_start + interval * (std::floor((dem->time() - c.t_start) / interval + 1e-9) + 1);
-  };
-  double next_energy = next_after(c.output.energy_interval), next_snap = next_after(c.output.snapshot_interval);
-  double next_checkpoint = next_after(c.output.checkpoint_interval), next_diag = next_after(diag_spec.interval);
-  bool settled_pending = dem->time() < -tiny;
+  OutputSchedule schedule(c, diag_spec, dem->time());  // the same on every rank
+  const bool tty = root && isatty(STDOUT_FILENO);
+  ProgressLine progress(c, dem->time(), tty);
   const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));
   const long n_present = n_case - header.removed;
-  Stopwatch clock;
-  double last_progress = 0;
   long particle_steps = 0;
-  while (dem->time() < c.t_end - tiny) {
+  while (!schedule.finished(dem->time())) {
     together(R, "DEM step", false, [&] { dem->step(); });
     particle_steps += n_present;  // progress figure only (parcels that leave still count)
     if (dem->steps() % observe_every == 0) {
@@ -367,31 +350,26 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
       observe(observe_every * c.dem.dt);
     }
     const double t = dem->time();
-    const bool last = t >= c.t_end - tiny;
-    const bool snap = t >= next_snap - tiny || last;
-    if (t >= next_energy - tiny || snap) {
+    const OutputSchedule::Due due = schedule.after_step(t);
+    if (due.energy) {
       auto ts = out_timers.scope(t_series);
       check_health();
       write_energy();
-      while (next_energy <= t + tiny) next_energy += c.output.energy_interval;
     }
-    if (diag_spec.enabled && (t >= next_diag - tiny || last)) {
+    if (due.diagnostics) {
       auto ts = out_timers.scope(t_series);
       write_diagnostics();
-      while (next_diag <= t + tiny) next_diag += diag_spec.interval;
     }
-    if (snap) {
+    if (due.snapshot) {
       auto ts = out_timers.scope(t_snap);
       write_snapshot();
-      while (next_snap <= t + tiny) next_snap += c.output.snapshot_interval;
     }
-    if (t >= next_checkpoint - tiny || last) {
+    if (due.checkpoint) {
       auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint_to(checkpoint);
-      while (next_checkpoint <= t + tiny) next_checkpoint += c.output.checkpoint_interval;
     }
-    if (settled_pending && t >= -tiny) {
+    if (due.settled) {
       auto ts = out_timers.scope(t_ckpt);
       check_health();
       write_checkpoint_to((out / "settled.bin").string());
@@ -399,22 +377,11 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
         fmt::print("{}settled state at t = {:.6g} s saved: {} (rerun the filling with --restart, on any number of "
                    "ranks)\n",
                    tty ? "\n" : "", t, (out / "settled.bin").string());
-      settled_pending = false;
     }
-    const double wall = clock.seconds();
-    if (root && ((tty && wall - last_progress > 0.5) ||
-                 (!tty && wall - last_progress > c.output.progress_interval) || last)) {
-      last_progress = wall;
-      const double frac = (t - c.t_start) / span, rate = particle_steps / std::max(wall, 1e-9);
-      const double done = (t - t_first) / std::max(c.t_end - t_first, 1e-300);
-      std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t, 100 * frac,
-                                     rate, wall * (1 - done) / std::max(done, 1e-9));
-      if (tty) fmt::print("\r{}   ", line), std::fflush(stdout);
-      else fmt::print("{}\n", line), std::fflush(stdout);
-    }
+    if (root) progress.update(t, particle_steps, due.last);
   }
-  if (tty) fmt::print("\n");
-  const double wall = clock.seconds();
+  if (root) progress.finish();
+  const double wall = progress.seconds();
   const EnergyBudget e = parallel::global_energy(comm, *dem);
   const long present = sum_over(R, static_cast<long>(dem->owned())), removed = parallel::global_removed(comm, *dem);
   const long inside = sum_over(R, count_inside_walls(dem->scene(), dem->time(), dem->particles(), dem->owned()));
@@ -429,12 +396,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   together(R, "final outputs", true, [&] {
     std::fclose(energy);
     if (diag_csv) std::fclose(diag_csv);
-    if (diag_spec.enabled) {
-      std::string rows = "id,t,speed_down,mass\n";
-      for (const auto& im : diag.impacts())
-        rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
-      io::write_file_atomic((out / "impacts.csv").string(), rows);
-    }
+    if (diag_spec.enabled) write_impacts(c.output.dir, diag);
     io::write_metrics((out / "metrics.csv").string(),
                       run_metrics(c.output.dir, dem->time(), present, e, removed, diag_spec.enabled,
                                   diag.front_impact()));
@@ -446,15 +408,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     fmt::print("parcels per rank: {} .. {} (mean {:.0f})\n", owned_min, owned_max, double(present) / R.size);
     fmt::print("particles {} (left the domain: {}, centre inside a wall: {}), solid mass {:.6g} kg\n", present,
                removed, inside, e.mass);
-    if (diag_spec.enabled) {
-      auto front = diag.front_impact();
-      if (front)
-        fmt::print("powder front reached the die floor at t = {:.4f} s; mean impact velocity {:.3f} m/s (first {:g} "
-                   "s)\n",
-                   front->first, front->second, diag_spec.impact_window);
-      else
-        fmt::print("the powder has not reached the die floor yet\n");
-    }
+    if (diag_spec.enabled) print_front(diag, diag_spec);
     fmt::print("portable state digest {:016x} at t = {:.9g} s\n", digest(final_state), dem->time());
     fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5), last_good.h5, "
                "checkpoint.bin (portable: restarts on any number of ranks), config.resolved.toml\n",

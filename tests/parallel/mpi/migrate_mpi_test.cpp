@@ -225,34 +225,5 @@ TEST(Migrate, AParcelBeyondTheNeighbouringBlocksStopsEveryRank) {
   expect_raised_together(error_of_migrate(d, p), "which is not a neighbour");
 }
 
-// On ranks other than 0, GoogleTest's printer gives way to one line per failed check.
-class FailuresOnly : public ::testing::EmptyTestEventListener {
- public:
-  explicit FailuresOnly(int rank) : rank_(rank) {}
-  void OnTestPartResult(const ::testing::TestPartResult& r) override {
-    if (r.failed())
-      std::printf("[ rank %d ] %s:%d: failure\n%s\n", rank_, r.file_name() ? r.file_name() : "?", r.line_number(),
-                  r.summary());
-  }
-
- private:
-  int rank_;
-};
-
 }  // namespace
 }  // namespace cgdem::parallel
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int rank = cgdem::parallel::world_rank();
-  if (rank != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-    listeners.Append(new cgdem::parallel::FailuresOnly(rank));
-  }
-  int failed = RUN_ALL_TESTS();
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return failed;
-}

@@ -1,40 +1,4 @@
-// GoogleTest inside MPI_Init / MPI_Finalize for the multi-rank air tests. Only rank 0 prints
-// the usual report; the other ranks print one line per failed check. Every test reduces its
-// checks over the ranks, so all ranks pass or fail together.
-#include <gtest/gtest.h>
-#include <mpi.h>
+// GoogleTest inside MPI_Init / MPI_Finalize for the multi-rank air tests (../mpi_main.hpp).
+#include "../mpi_main.hpp"
 
-#include <cstdio>
-
-namespace {
-
-class FailuresOnly : public ::testing::EmptyTestEventListener {
- public:
-  explicit FailuresOnly(int rank) : rank_(rank) {}
-  void OnTestPartResult(const ::testing::TestPartResult& r) override {
-    if (r.failed())
-      std::printf("[ rank %d ] %s:%d: failure\n%s\n", rank_, r.file_name() ? r.file_name() : "?", r.line_number(),
-                  r.summary());
-  }
-
- private:
-  int rank_;
-};
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (rank != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-    listeners.Append(new FailuresOnly(rank));
-  }
-  int failed = RUN_ALL_TESTS();
-  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Finalize();
-  return failed;
-}
+int main(int argc, char** argv) { return cgdem::test::run_tests_on_ranks(argc, argv); }

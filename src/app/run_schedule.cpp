@@ -1,0 +1,106 @@
+#include "app/run_schedule.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "app/checkpoint.hpp"
+#include "core/error.hpp"
+#include "core/revision.hpp"
+#include "io/atomic_file.hpp"
+
+namespace cgdem::app {
+
+OutputSchedule::OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now)
+    : t_start_(c.t_start),
+      t_end_(c.t_end),
+      tiny_(1e-9 * c.dem.dt),
+      energy_(c.output.energy_interval),
+      snapshot_(c.output.snapshot_interval),
+      checkpoint_(c.output.checkpoint_interval),
+      diag_(diag.interval),
+      with_diag_(diag.enabled),
+      settled_pending_(t_now < -1e-9 * c.dem.dt) {
+  next_energy_ = next_after(energy_, t_now);
+  next_snap_ = next_after(snapshot_, t_now);
+  next_checkpoint_ = next_after(checkpoint_, t_now);
+  next_diag_ = next_after(diag_, t_now);
+}
+
+double OutputSchedule::next_after(double interval, double t) const {
+  return t_start_ + interval * (std::floor((t - t_start_) / interval + 1e-9) + 1);
+}
+
+OutputSchedule::Due OutputSchedule::after_step(double t) {
+  Due d;
+  d.last = finished(t);
+  d.snapshot = t >= next_snap_ - tiny_ || d.last;
+  d.energy = t >= next_energy_ - tiny_ || d.snapshot;
+  d.diagnostics = with_diag_ && (t >= next_diag_ - tiny_ || d.last);
+  d.checkpoint = t >= next_checkpoint_ - tiny_ || d.last;
+  d.settled = settled_pending_ && t >= -tiny_;
+  auto advance = [&](bool due, double& next, double interval) {
+    if (due)
+      while (next <= t + tiny_) next += interval;
+  };
+  advance(d.energy, next_energy_, energy_);
+  advance(d.diagnostics, next_diag_, diag_);
+  advance(d.snapshot, next_snap_, snapshot_);
+  advance(d.checkpoint, next_checkpoint_, checkpoint_);
+  if (d.settled) settled_pending_ = false;
+  return d;
+}
+
+ProgressLine::ProgressLine(const DemCase& c, double t_first, bool tty)
+    : t_start_(c.t_start), t_end_(c.t_end), t_first_(t_first), interval_(c.output.progress_interval), tty_(tty) {}
+
+void ProgressLine::update(double t, long particle_steps, bool last) {
+  const double wall = clock_.seconds();
+  if (!((tty_ && wall - last_ > 0.5) || (!tty_ && wall - last_ > interval_) || last)) return;
+  last_ = wall;
+  const double frac = (t - t_start_) / (t_end_ - t_start_), rate = particle_steps / std::max(wall, 1e-9);
+  const double done = (t - t_first_) / std::max(t_end_ - t_first_, 1e-300);
+  const std::string line = fmt::format("t = {:.5f} s  {:5.1f}%  {:.3g} particle-steps/s  ETA {:.0f} s", t,
+                                       100 * frac, rate, wall * (1 - done) / std::max(done, 1e-9));
+  if (tty_) fmt::print("\r{}   ", line), std::fflush(stdout);
+  else fmt::print("{}\n", line), std::fflush(stdout);  // batch logs see progress as it happens
+}
+
+void ProgressLine::finish() const {
+  if (tty_) fmt::print("\n");
+}
+
+std::FILE* open_series(const std::string& dir, const std::string& name, const std::string& header,
+                       const std::string& comment, bool restart, double t) {
+  const std::string path = (std::filesystem::path(dir) / name).string();
+  if (restart && std::filesystem::exists(path)) {
+    truncate_csv_after(path, t);
+    std::FILE* f = std::fopen(path.c_str(), "a");
+    if (!f) throw Error("cannot append to " + path);
+    return f;
+  }
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw Error("cannot write " + path);
+  std::fprintf(f, "# cgdem %s, %s\n%s\n", kGitRevision, comment.c_str(), header.c_str());
+  return f;
+}
+
+void write_impacts(const std::string& dir, const DieDiagnostics& diag) {
+  std::string rows = "id,t,speed_down,mass\n";
+  for (const auto& im : diag.impacts())
+    rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
+  io::write_file_atomic((std::filesystem::path(dir) / "impacts.csv").string(), rows);
+}
+
+void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec) {
+  const auto front = diag.front_impact();
+  if (front)
+    fmt::print("powder front reached the die floor at t = {:.4f} s; mean impact velocity {:.3f} m/s (first {:g} s)\n",
+               front->first, front->second, spec.impact_window);
+  else
+    fmt::print("the powder has not reached the die floor yet\n");
+}
+
+}  // namespace cgdem::app
