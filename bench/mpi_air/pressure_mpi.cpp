@@ -83,19 +83,6 @@ Problem die_fill(int nx, int ny, int nz) {
   return p;
 }
 
-// The block's part of a global array with `extra` more entries along one axis (faces).
-std::vector<double> part(const air_mpi::GridBlocks& b, const std::vector<double>& global, int axis) {
-  auto e = b.local_cells();
-  auto ge = b.global_cells();
-  if (axis >= 0) e[axis] += 1, ge[axis] += 1;
-  std::vector<double> out(long(e[0]) * e[1] * e[2]);
-  for (int k = 0; k < e[2]; ++k)
-    for (int j = 0; j < e[1]; ++j)
-      for (int i = 0; i < e[0]; ++i)
-        out[i + long(e[0]) * (j + long(e[1]) * k)] =
-            global[(b.lo()[0] + i) + long(ge[0]) * ((b.lo()[1] + j) + long(ge[1]) * (b.lo()[2] + k))];
-  return out;
-}
 
 double slowest(double t) {
   MPI_Allreduce(MPI_IN_PLACE, &t, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
@@ -157,7 +144,8 @@ int run(int argc, char** argv) {
 
   std::stringstream list(precs);
   std::string name;
-  const std::vector<double> rhs = part(blocks, p.rhs, -1), want = part(blocks, ref, -1);
+  const std::vector<double> rhs = air_mpi::block_part(blocks, p.rhs, -1);
+  const std::vector<double> want = air_mpi::block_part(blocks, ref, -1);
   while (std::getline(list, name, ',')) {
     if (name == "pfmg" && !air_mpi::have_pfmg()) {
       if (rank == 0) std::printf("dist   %-8s (not built: no hypre)\n", name.c_str());
@@ -170,7 +158,8 @@ int run(int argc, char** argv) {
     air_mpi::DistPressureSolver solver(MPI_COMM_WORLD, blocks, p.g, opt);
     MPI_Barrier(MPI_COMM_WORLD);
     const double t0 = MPI_Wtime();
-    solver.set_coefficients(part(blocks, p.a[0], 0), part(blocks, p.a[1], 1), part(blocks, p.a[2], 2));
+    solver.set_coefficients(air_mpi::block_part(blocks, p.a[0], 0), air_mpi::block_part(blocks, p.a[1], 1),
+                            air_mpi::block_part(blocks, p.a[2], 2));
     const double setup = slowest(MPI_Wtime() - t0);
     double sum = 0, best = 1e300, err = 0;
     pressure::SolveStats st;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "solvers/pressure/union_find.hpp"
 
 namespace cgdem::pressure {
 
@@ -23,18 +24,6 @@ void check_size(const std::vector<double>& a, long want, const char* name) {
       throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
 }
 
-int find_root(std::vector<int>& parent, int c) {
-  while (parent[c] != c) {
-    parent[c] = parent[parent[c]];
-    c = parent[c];
-  }
-  return c;
-}
-void unite(std::vector<int>& parent, int a, int b) {
-  a = find_root(parent, a);
-  b = find_root(parent, b);
-  if (a != b) parent[a < b ? b : a] = a < b ? a : b;  // smaller index is the root
-}
 }  // namespace
 
 double dot(const double* a, const double* b, long n) {

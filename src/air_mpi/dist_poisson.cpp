@@ -8,10 +8,13 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "solvers/pressure/union_find.hpp"
 
 namespace cgdem::air_mpi {
 
 using pressure::Boundary;
+using pressure::find_root;
+using pressure::unite;
 
 namespace {
 
@@ -52,17 +55,6 @@ long side_face(const std::array<int, 3>& e, int side, long cell) {
   return c[0] + f[0] * (c[1] + f[1] * c[2]);
 }
 
-long find_root(std::vector<long>& parent, long c) {
-  while (parent[c] != c) {
-    parent[c] = parent[parent[c]];
-    c = parent[c];
-  }
-  return c;
-}
-void unite(std::vector<long>& parent, long a, long b) {
-  a = find_root(parent, a), b = find_root(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller index is the root
-}
 
 }  // namespace
 

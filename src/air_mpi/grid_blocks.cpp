@@ -74,4 +74,20 @@ fluid::MacGrid GridBlocks::local_grid(const fluid::MacGrid& global) const {
   return g;
 }
 
+std::vector<double> block_part(const GridBlocks& b, const std::vector<double>& global, int stagger) {
+  auto e = b.local_cells();
+  auto ge = b.global_cells();
+  if (stagger >= 0) e[stagger] += 1, ge[stagger] += 1;
+  if (static_cast<long>(global.size()) != long(ge[0]) * ge[1] * ge[2])
+    throw Error(fmt::format("air blocks: a global array of {} entries, the grid's has {}", global.size(),
+                            long(ge[0]) * ge[1] * ge[2]));
+  std::vector<double> out(long(e[0]) * e[1] * e[2]);
+  for (int k = 0; k < e[2]; ++k)
+    for (int j = 0; j < e[1]; ++j)
+      for (int i = 0; i < e[0]; ++i)
+        out[i + long(e[0]) * (j + long(e[1]) * k)] =
+            global[(b.lo()[0] + i) + long(ge[0]) * ((b.lo()[1] + j) + long(ge[1]) * (b.lo()[2] + k))];
+  return out;
+}
+
 }  // namespace cgdem::air_mpi

@@ -17,6 +17,7 @@
 // (the upper block sends its faces 0..kGhost down); the constructor checks it.
 #pragma once
 #include <array>
+#include <vector>
 
 #include "fluid/mac_grid.hpp"
 
@@ -69,5 +70,10 @@ class GridBlocks {
   std::array<int, 3> lo_{}, hi_{};
   std::array<int, 6> nb_{};
 };
+
+// This block's entries of a packed global array, x fastest (the layout of the serial
+// pressure solver, pressure_solver.hpp): cells for stagger < 0, else the faces normal to
+// axis `stagger`, lo .. hi along it (the cut face included), cells across.
+std::vector<double> block_part(const GridBlocks& b, const std::vector<double>& global, int stagger);
 
 }  // namespace cgdem::air_mpi

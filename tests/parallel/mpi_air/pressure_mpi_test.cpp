@@ -75,30 +75,6 @@ Problem make_problem(const char* name, bool open_top, bool pocket) {
   return p;
 }
 
-// The block's part of a global MAC array (faces [lo, hi] along d, cells [lo, hi) across).
-std::vector<double> local_faces(const GridBlocks& b, const std::vector<double>& global, int d) {
-  auto e = b.local_cells();
-  auto ge = b.global_cells();
-  e[d] += 1, ge[d] += 1;
-  std::vector<double> out(long(e[0]) * e[1] * e[2]);
-  for (int k = 0; k < e[2]; ++k)
-    for (int j = 0; j < e[1]; ++j)
-      for (int i = 0; i < e[0]; ++i)
-        out[i + long(e[0]) * (j + long(e[1]) * k)] =
-            global[(b.lo()[0] + i) + long(ge[0]) * ((b.lo()[1] + j) + long(ge[1]) * (b.lo()[2] + k))];
-  return out;
-}
-std::vector<double> local_cells(const GridBlocks& b, const std::vector<double>& global) {
-  const auto e = b.local_cells();
-  const auto ge = b.global_cells();
-  std::vector<double> out(long(e[0]) * e[1] * e[2]);
-  for (int k = 0; k < e[2]; ++k)
-    for (int j = 0; j < e[1]; ++j)
-      for (int i = 0; i < e[0]; ++i)
-        out[i + long(e[0]) * (j + long(e[1]) * k)] =
-            global[(b.lo()[0] + i) + long(ge[0]) * ((b.lo()[1] + j) + long(ge[1]) * (b.lo()[2] + k))];
-  return out;
-}
 
 std::vector<std::string> preconditioners() {
   std::vector<std::string> p{"none", "bj-mg", "bj-fft"};
@@ -120,14 +96,14 @@ void check_against_serial(const Problem& prob) {
   ASSERT_GT(ref_max, 0);
   for (const GridBlocks& b : test::layouts(kCells)) {
     const std::string layout = fmt::format("{}x{}x{}", b.dims()[0], b.dims()[1], b.dims()[2]);
-    const std::vector<double> want = local_cells(b, ref), rhs = local_cells(b, prob.rhs);
+    const std::vector<double> want = block_part(b, ref, -1), rhs = block_part(b, prob.rhs, -1);
     for (const std::string& pc : preconditioners()) {
       DistOptions opt;
       opt.preconditioner = pc;
       opt.rel_tol = 1e-10;
       opt.max_iter = 2000;
       DistPressureSolver solver(MPI_COMM_WORLD, b, prob.grid, opt);
-      solver.set_coefficients(local_faces(b, prob.a[0], 0), local_faces(b, prob.a[1], 1), local_faces(b, prob.a[2], 2));
+      solver.set_coefficients(block_part(b, prob.a[0], 0), block_part(b, prob.a[1], 1), block_part(b, prob.a[2], 2));
       std::vector<double> phi(b.local_count(), 0.0);
       const auto st = solver.solve(rhs, phi);
       double err = 0, sum = 0;
