@@ -41,28 +41,16 @@
 #include <type_traits>
 #include <vector>
 
+#include "../mpi_util.hpp"
 #include "../parallel_test_util.hpp"
 #include "parallel/mpi/distributed_dem.hpp"
 
 namespace cgdem::parallel {
 namespace {
 
-int rank_of_world() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int size_of_world() {
-  int s = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
-template <class T>
-T reduced(T v, MPI_Op op) {
-  MPI_Datatype t = std::is_same_v<T, double> ? MPI_DOUBLE : MPI_LONG;
-  MPI_Allreduce(MPI_IN_PLACE, &v, 1, t, op, MPI_COMM_WORLD);
-  return v;
-}
+using test::reduced;
+using test::world_rank;
+using test::world_size;
 
 const Species kS = test::powder_l3();  // d = 375 um parcels of 125 um originals
 const double kD = kS.diameter();
@@ -121,7 +109,7 @@ std::vector<Seed> seeds() {
 }
 
 Decomposition decomposition() {
-  const int n = size_of_world();
+  const int n = world_size();
   return Decomposition(params().domain, n == 4 ? Dims{2, 2, 1} : Dims{n, 1, 1});
 }
 
@@ -180,7 +168,7 @@ std::vector<SplitRecord> gathered_split_pairs(const DemSolver& dem) {
       mine.push_back(p.id[i] < p.id[j] ? SplitRecord{p.id[i], p.id[j], nl.hist[e]}
                                        : SplitRecord{p.id[j], p.id[i], nl.hist[e].flipped()});
     }
-  const int size = size_of_world();
+  const int size = world_size();
   const int bytes = static_cast<int>(mine.size() * sizeof(SplitRecord));
   std::vector<int> count(size), start(size, 0);
   MPI_Allgather(&bytes, 1, MPI_INT, count.data(), 1, MPI_INT, MPI_COMM_WORLD);
@@ -200,7 +188,7 @@ bool same_values(const contact::History& a, const contact::History& b) {
 }
 
 TEST(DistributedDem, MatchesTheSingleProcessRun) {
-  const int rank = rank_of_world(), size = size_of_world();
+  const int rank = world_rank(), size = world_size();
   const Decomposition d = decomposition();
   // The reverse-order run is the same on every rank: rank 0 runs it (for the printout).
   DemSolver ref = make_solver(), dist = make_solver(), alt = make_solver();
@@ -354,7 +342,7 @@ TEST(DistributedDem, MatchesTheSingleProcessRun) {
 // are no forces and every rank computes the serial bits) without gravity: many parcels
 // cross the cuts, and part of the cloud leaves the domain.
 TEST(DistributedDem, EscapedParcelsAreRemovedAndCountedOnEveryRank) {
-  const int rank = rank_of_world();
+  const int rank = world_rank();
   const Decomposition d = decomposition();
   DemParams prm = params();
   prm.gravity = {};
@@ -390,7 +378,7 @@ TEST(DistributedDem, EscapedParcelsAreRemovedAndCountedOnEveryRank) {
   EXPECT_GT(removed, 20);
   EXPECT_EQ(diff.missing, 0);
   EXPECT_EQ(diff.dx, 0.0);
-  if (size_of_world() > 1) {
+  if (world_size() > 1) {
     EXPECT_GT(sent, 10);
   }
 }
@@ -399,14 +387,14 @@ TEST(DistributedDem, PeriodicAxesAreRefused) {
   DemParams p = params();
   p.periodic = {false, true, false};
   DemSolver dem({kS}, MaterialParams{}, p, box_scene());
-  const Decomposition d(p.domain, size_of_world() == 4 ? Dims{2, 2, 1} : Dims{size_of_world(), 1, 1});
+  const Decomposition d(p.domain, world_size() == 4 ? Dims{2, 2, 1} : Dims{world_size(), 1, 1});
   std::string msg = "(no error)";
   try {
     DistributedDem hook(MPI_COMM_WORLD, d, dem);
   } catch (const Error& e) {
     msg = e.what();
   }
-  if (rank_of_world() == 0) std::printf("[ errors ] %s\n", msg.c_str());
+  if (world_rank() == 0) std::printf("[ errors ] %s\n", msg.c_str());
   EXPECT_NE(msg.find("axis y is periodic"), std::string::npos) << msg;
   EXPECT_EQ(dem.domain_exchange(), nullptr);
 }

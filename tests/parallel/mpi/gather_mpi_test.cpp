@@ -11,29 +11,19 @@
 #include <cstdio>
 #include <random>
 
+#include "../mpi_util.hpp"
 #include "../parallel_test_util.hpp"
 #include "parallel/mpi/gather.hpp"
 
 namespace cgdem::parallel {
 namespace {
 
+using test::summed;
+using test::world_rank;
+using test::world_size;
+
 const Species kS = test::powder_l3();
 const double kD = kS.diameter(), kA = 0.98 * kD;
-
-int rank_of(MPI_Comm c) {
-  int r = 0;
-  MPI_Comm_rank(c, &r);
-  return r;
-}
-int size_of(MPI_Comm c) {
-  int s = 0;
-  MPI_Comm_size(c, &s);
-  return s;
-}
-long summed(long v) {
-  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return v;
-}
 
 const int kNx = 12, kNy = 6, kNz = 3;
 const geometry::Aabb kBox{{0, 0, 0}, {kNx * kA + kD, kNy * kA + kD, kNz * kA + kD}};
@@ -65,7 +55,7 @@ PortableState round_trip(const Decomposition& d, const PortableState& all, const
   scatter_state(MPI_COMM_WORLD, d, all, p, nl);
   nl.build(p, scene.at(0));
   long wrong = 0;
-  for (size_t i = 0; i < p.size(); ++i) wrong += d.owner_of(p.x[i]) != rank_of(MPI_COMM_WORLD);
+  for (size_t i = 0; i < p.size(); ++i) wrong += d.owner_of(p.x[i]) != world_rank();
   misplaced = summed(wrong);
   return gather_state(MPI_COMM_WORLD, portable_state(p, nl));
 }
@@ -78,7 +68,7 @@ long split_pairs(const PortableState& s, const Decomposition& d) {
 }
 
 TEST(Gather, ParcelsComeBackInIdOrderBitForBitThroughTwoLayouts) {
-  const int size = size_of(MPI_COMM_WORLD), rank = rank_of(MPI_COMM_WORLD);
+  const int size = world_size(), rank = world_rank();
   const geometry::Scene scene = test::floor_scene();
   const PortableState all = whole_bed(scene);
   // Two layouts of the same ranks: the chosen one, and all cuts along y instead.

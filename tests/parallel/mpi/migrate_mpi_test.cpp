@@ -21,29 +21,19 @@
 #include <string>
 
 #include "../../error_of.hpp"
+#include "../mpi_util.hpp"
 #include "../parallel_test_util.hpp"
 #include "parallel/mpi/migrate.hpp"
 
 namespace cgdem::parallel {
 namespace {
 
+using test::summed;
+using test::world_rank;
+using test::world_size;
+
 const Species kS = test::powder_l3();
 const double kD = kS.diameter(), kR = 0.5 * kD, kA = 0.98 * kD;
-
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int world_size() {
-  int s = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
-long summed(long v) {
-  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return v;
-}
 
 const geometry::Aabb kBox{{-6 * kA, -6 * kA, 0}, {6 * kA, 6 * kA, 4 * kA}};
 

@@ -4,28 +4,15 @@
 
 #include <vector>
 
+#include "../mpi_util.hpp"
 #include "air_mpi/grid_blocks.hpp"
 
 namespace cgdem::air_mpi::test {
 
-inline int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-inline int world_size() {
-  int s = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
-inline long summed(long v) {
-  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return v;
-}
-inline double maxed(double v) {
-  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return v;
-}
+using cgdem::test::maxed;
+using cgdem::test::summed;
+using cgdem::test::world_rank;
+using cgdem::test::world_size;
 
 // The cuts every test runs on: 1 rank 1 x 1 x 1, 2 ranks choose_dims (2 x 1 x 1 for these
 // grids), 4 ranks both 2 x 2 x 1 and 4 x 1 x 1.
