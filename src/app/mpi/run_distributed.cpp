@@ -47,8 +47,8 @@ double sum_over(const Ranks& r, double v) {
 }
 
 // f() on every rank (on rank 0 only when root_only); a cgdem::Error on any rank stops
-// every rank at this point, with its message on the rank that found it. No rank is then
-// left waiting in the next collective call.
+// every rank at this point (parallel::RaisedTogether, carrying the message on the rank
+// that found it). No rank is then left waiting in the next collective call.
 template <class F>
 void together(const Ranks& r, const char* what, bool root_only, F&& f) {
   std::string error;
@@ -57,15 +57,9 @@ void together(const Ranks& r, const char* what, bool root_only, F&& f) {
       f();
     } catch (const Error& e) {
       error = e.what();
-      fmt::print(stderr, "cgdem: error{}: {}\n", r.size > 1 ? fmt::format(" (rank {})", r.rank) : "", error);
-      std::fflush(stderr);
     }
   }
-  try {
-    parallel::raise_together(r.comm, r.rank, error, what);
-  } catch (const Error& e) {
-    throw StoppedTogether(e.what());
-  }
+  parallel::raise_together(r.comm, r.rank, error, what);
 }
 
 // What a portable checkpoint holds besides the parcels: the run's position and the totals
@@ -343,7 +337,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   const long n_present = n_case - header.removed;
   long particle_steps = 0;
   while (!schedule.finished(dem->time())) {
-    together(R, "DEM step", false, [&] { dem->step(); });
+    dem->step();  // its exchanges raise their errors on every rank together
     particle_steps += n_present;  // progress figure only (parcels that leave still count)
     if (dem->steps() % observe_every == 0) {
       auto ts = out_timers.scope(t_observe);
@@ -430,7 +424,12 @@ int run_distributed_main(int& argc, char**& argv, RunRequest r) {
   int status = 2;
   try {
     status = run_case_file(r);
-  } catch (const StoppedTogether&) {
+  } catch (const parallel::RaisedTogether& e) {  // every rank is here: stop cleanly
+    if (e.found_here) {
+      int size = 1;
+      MPI_Comm_size(MPI_COMM_WORLD, &size);
+      fmt::print(stderr, "cgdem: error{}: {}\n", size > 1 ? fmt::format(" (rank {})", rank) : "", e.what());
+    }
     status = 2;
   } catch (const ConfigError& e) {
     if (rank == 0) fmt::print(stderr, "cgdem: error: {}\n", e.what());

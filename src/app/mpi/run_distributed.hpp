@@ -25,17 +25,12 @@
 
 namespace cgdem::app {
 
-// Thrown on every rank when an error stopped a distributed run at a point all ranks
-// reach together; the rank that found the error has printed its message already.
-struct StoppedTogether : Error {
-  using Error::Error;
-};
-
 // `cgdem run` over MPI_COMM_WORLD: MPI_Init, run_case_file(r) with r.distributed, and
 // MPI_Finalize. Errors: the same bad input on every rank (ConfigError) is printed once,
-// by rank 0; an error raised together (StoppedTogether) has been printed; any other error
-// is printed by its rank, which then aborts the job (MPI_Abort), so that no rank waits
-// for it forever. Returns the exit status.
+// by rank 0; an error raised on every rank together (parallel::RaisedTogether: the run's
+// own checks and outputs, and the exchanges inside the DEM step) is printed by the ranks
+// that found it and ends every rank cleanly; any other error is printed by its rank, which
+// then aborts the job (MPI_Abort), so that no rank waits for it forever. Returns the exit status.
 int run_distributed_main(int& argc, char**& argv, RunRequest r);
 
 // Collective over comm. Returns the exit status; errors are raised on every rank together.

@@ -22,9 +22,10 @@ void raise_together(MPI_Comm comm, int rank, const std::string& error, const cha
   int first = INT_MAX;
   check_mpi(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm), "MPI_Allreduce", what);
   if (first == INT_MAX) return;
-  if (!error.empty()) throw Error(error);
-  throw Error(fmt::format("{} stopped on every rank: rank {} found an error (its message is in its output)", what,
-                          first));
+  if (!error.empty()) throw RaisedTogether(error, true);
+  throw RaisedTogether(
+      fmt::format("{} stopped on every rank: rank {} found an error (its message is in its output)", what, first),
+      false);
 }
 
 std::string oversized(const std::vector<Buffer>& out, const std::vector<int>& nb, const char* what) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "parallel/migration.hpp"
 
 namespace cgdem::parallel {
@@ -14,10 +15,19 @@ namespace cgdem::parallel {
 // Throws cgdem::Error "<what>: <call> failed: <MPI's text>" unless rc is MPI_SUCCESS.
 void check_mpi(int rc, const char* call, const char* what);
 
+// An error that every rank of a communicator throws at the same point (raise_together):
+// a caller may then stop every rank cleanly, with no rank left in a collective call.
+// found_here: this rank found it (its message is the error itself); on the others the
+// message names the rank that did.
+struct RaisedTogether : Error {
+  RaisedTogether(const std::string& message, bool found) : Error(message), found_here(found) {}
+  bool found_here;
+};
+
 // Collective. Returns when no rank has an error (error empty everywhere); otherwise throws
-// on every rank: the rank with the lowest number among those that found one throws its
-// message, every other rank an Error "<what> stopped on every rank: rank R found an error
-// ...". No rank is then left waiting in a later collective call.
+// RaisedTogether on every rank: each rank that found one throws its own message, every
+// other rank "<what> stopped on every rank: rank R found an error ..." (R the lowest of
+// those that found one). No rank is then left waiting in a later collective call.
 void raise_together(MPI_Comm comm, int rank, const std::string& error, const char* what);
 
 // A message for the first buffer too large for one MPI message (int count), or "".
