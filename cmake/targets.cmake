@@ -63,7 +63,7 @@ target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
 # never initialises MPI.
 if(CGDEM_MPI)
   target_sources(cgdem_app PRIVATE ${PROJECT_SOURCE_DIR}/src/app/mpi/run_distributed.cpp)
-  target_link_libraries(cgdem_app PUBLIC cgdem_parallel)
+  target_link_libraries(cgdem_app PUBLIC cgdem_parallel cgdem_air_mpi)
   target_compile_definitions(cgdem_app PUBLIC CGDEM_WITH_MPI)
 endif()
 # The analysis on top of runs (coarse-grain scaling, spectra, convergence studies).

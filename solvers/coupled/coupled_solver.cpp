@@ -17,13 +17,22 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   t_deposit_ = timers_.id("parcels -> air");
   // Not kept as the first step's weights: a restart replaces the parcels after this.
   walls_at(air_.t);
-  void_stats_ = ex_.void_fraction(dem_.particles(), air_.eps);
+  {
+    coupling::ParcelWeights w;
+    ex_.weights(dem_.particles(), dem_.owned(), w);
+    void_stats_ = ex_.void_fraction(dem_.particles(), w, air_.eps);
+  }
   air_.eps_old = air_.eps;
 }
 
 void CoupledSolver::walls_at(double t) {
   // Cached by body position: only the band around the moving parts is re-evaluated.
   fluid::update_ibm(air_.grid, dem_.scene().at(t), fluid_.params().ibm_samples, walls_);
+  // Over MPI ranks the masks read the fractions beyond the cuts (serial: nothing to do).
+  fluid::FieldSync& sync = fluid_.sync();
+  sync.copy_ghosts(walls_.alpha_cell, fluid::kCells);
+  for (int d = 0; d < 3; ++d) sync.copy_ghosts(walls_.alpha_face[d], d);
+  walls_.any_solid = sync.any(walls_.any_solid);  // a block's ghosts may reach walls it has none of
   ex_.set_walls(&walls_);
 }
 
@@ -33,7 +42,7 @@ void CoupledSolver::walls_at(double t) {
 void CoupledSolver::weights_at(double t) {
   walls_at(t);
   auto s = timers_.scope(t_weights_);
-  ex_.weights(dem_.particles(), w_);
+  ex_.weights(dem_.particles(), dem_.owned(), w_);  // not the ghosts of other ranks' parcels
   weights_fresh_ = true;
 }
 

@@ -42,6 +42,8 @@ FluidSolver::FluidSolver(const MacGrid& g, FluidParams params, std::unique_ptr<p
   g_.validate();
   params_.validate();
   if (!ps_) throw Error("fluid: no pressure solver given");
+  serial_sync_ = std::make_unique<SerialSync>(g_, params_.bc);
+  sync_ = serial_sync_.get();
   for (int d = 0; d < 3; ++d) {
     E_old_[d] = make_face_field(g_, d, 1.0);
     E_new_[d] = make_face_field(g_, d, 1.0);
@@ -135,7 +137,7 @@ void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1,
           out[i] = (1 - a) * u_hat + a * br[i];  // eqs. (18), (20)
         }
       }
-    fill_velocity_component_ghosts(g_, params_.bc, d, ustar[d]);  // periodic images, wall faces
+    sync_->fill_velocity_component(d, ustar[d]);  // periodic images, wall faces, cut faces
   }
 }
 
@@ -158,11 +160,18 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
     for (int k = 0; k < g_.nz; ++k)
       for (int j = 0; j < g_.ny; ++j)
         for (int i = 0; i < g_.nx; ++i) all_ok = all_ok && ok(i, j, k);
-    if (!all_ok)  // name the first bad cell
-      for (int k = 0; k < g_.nz; ++k)
-        for (int j = 0; j < g_.ny; ++j)
-          for (int i = 0; i < g_.nx; ++i)
-            if (!ok(i, j, k)) throw Error(fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {})", i, j, k));
+    if (sync_->any(!all_ok)) {  // name the first bad cell
+      std::string bad;
+      for (int k = 0; k < g_.nz && bad.empty(); ++k)
+        for (int j = 0; j < g_.ny && bad.empty(); ++j)
+          for (int i = 0; i < g_.nx && bad.empty(); ++i)
+            if (!ok(i, j, k)) {
+              const Vec3 x = g_.cell_centre(i, j, k);
+              bad = fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m", i, j,
+                                k, x.x, x.y, x.z);
+            }
+      sync_->raise_if(!bad.empty(), bad);
+    }
   }
   StepStats st;
   {
@@ -172,11 +181,11 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
   const Vel vel{&s.u, &s.v, &s.w};
   {
     auto t = timers_.scope("ghosts, face eps");
-    fill_scalar_ghosts(g_, params_.bc, s.eps, ScalarKind::ZeroGradient);
-    fill_scalar_ghosts(g_, params_.bc, s.eps_old, ScalarKind::ZeroGradient);
+    sync_->fill_scalar(s.eps, ScalarKind::ZeroGradient);
+    sync_->fill_scalar(s.eps_old, ScalarKind::ZeroGradient);
     face_eps(s.eps_old, E_old_);
     face_eps(s.eps, E_new_);
-    fill_velocity_ghosts(g_, params_.bc, s.u, s.v, s.w);
+    sync_->fill_velocity(s.u, s.v, s.w);
   }
   {
     auto t = timers_.scope("advection+viscous");
@@ -209,7 +218,7 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
   const Divergence dv = divergence(s, dt);
   st.max_divergence = dv.fluid;
   st.max_divergence_walls = dv.walls;
-  double umax = 0;
+  double umax_d[3];
   for (int d = 0; d < 3; ++d) {
     double m = 0;
     const Field& f = s.vel(d);
@@ -217,8 +226,11 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
     for (int k = 0; k < f.nk(); ++k)
       for (int j = 0; j < f.nj(); ++j)
         for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
-    umax += m;
+    umax_d[d] = m;
   }
+  sync_->max(umax_d, 3);
+  double umax = 0;
+  for (int d = 0; d < 3; ++d) umax += umax_d[d];
   st.cfl = umax * dt / g_.dx;
   s.eps_old = s.eps;
   s.t += dt;
@@ -250,21 +262,25 @@ FluidSolver::Divergence FluidSolver::divergence(const FluidState& s, double dt) 
         else
           m_fluid = std::max(m_fluid, std::fabs(div));
       }
-  return {m_fluid, m_wall};
+  double m[2] = {m_fluid, m_wall};
+  sync_->max(m, 2);
+  return {m[0], m[1]};
 }
 
 double FluidSolver::stable_dt(const FluidState& s) const {
-  double umax = 0;
+  double m[4] = {0, 0, 0, 0};  // max |u_d| per component, then the fastest wall side
   for (int d = 0; d < 3; ++d) {
-    double m = 0;
     const Field& f = s.vel(d);
     for (int k = 0; k < f.nk(); ++k)
       for (int j = 0; j < f.nj(); ++j)
-        for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
-    umax += m;
+        for (int i = 0; i < f.ni(); ++i) m[d] = std::max(m[d], std::fabs(f(i, j, k)));
   }
   for (const auto& sb : params_.bc)
-    if (sb.type == BcType::Wall) umax = std::max(umax, norm(sb.wall_velocity));
+    if (sb.type == BcType::Wall) m[3] = std::max(m[3], norm(sb.wall_velocity));
+  sync_->max(m, 4);
+  double umax = 0;
+  for (int d = 0; d < 3; ++d) umax += m[d];
+  umax = std::max(umax, m[3]);
   double dt = params_.dt_max;
   if (umax > 0) dt = std::min(dt, params_.cfl * g_.dx / umax);
   if (params_.mu > 0) dt = std::min(dt, params_.visc_safety * g_.dx * g_.dx * params_.rho / (6 * params_.mu));

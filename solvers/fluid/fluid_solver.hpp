@@ -28,6 +28,7 @@
 #include <memory>
 
 #include "core/timers.hpp"
+#include "fluid/field_sync.hpp"
 #include "fluid/fluid_state.hpp"
 #include "fluid/ibm.hpp"
 #include "geometry/scene.hpp"
@@ -41,9 +42,17 @@ class FluidSolver {
   // Uses the given pressure solver (built for pressure_grid(g, params)).
   FluidSolver(const MacGrid& g, FluidParams params, std::unique_ptr<pressure::PressureSolver> ps);
 
+  // Ghost fills and grid-wide reductions go through `sync` from now on (the default:
+  // SerialSync on the grid and params.bc). For a block of a grid over MPI ranks: g and
+  // params.bc are the block's (air_mpi::local_boundary), the pressure solver the
+  // distributed one. `sync` must outlive the solver.
+  void set_sync(FieldSync& sync) { sync_ = &sync; }
+  FieldSync& sync() { return *sync_; }
+
   StepStats advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt);
 
-  // Largest stable step: min(dt_max, cfl dx / sum_d max|u_d|, visc_safety dx^2 rho / (6 mu)).
+  // Largest stable step: min(dt_max, cfl dx / sum_d max|u_d|, visc_safety dx^2 rho / (6 mu)),
+  // the maxima over the whole grid (over every rank's block).
   double stable_dt(const FluidState& s) const;
   // max over cells of |(eps - eps_old)/dt + div(E u)| for the state as it is [1/s]: over the
   // cells with some fluid (alpha_cell < 1, where the pressure equation imposes it) and over
@@ -73,6 +82,8 @@ class FluidSolver {
   MacGrid g_;
   FluidParams params_;
   std::unique_ptr<pressure::PressureSolver> ps_;
+  std::unique_ptr<SerialSync> serial_sync_;
+  FieldSync* sync_ = nullptr;
   IbmFractions ibm_;
   PhaseTimers timers_;
   Faces E_old_, E_new_, R0_, R1_, ustar_, u1_;  // u1_: the projected Heun stage

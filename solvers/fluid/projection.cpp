@@ -58,6 +58,7 @@ void FluidSolver::set_pressure_coefficients(const Sources& src, double dt) {
       }
     changed = changed || diff;
   }
+  changed = sync_->any(changed);  // the set-up is collective over the ranks
   if (changed) {
     for (int d = 0; d < 3; ++d) coef[d]->swap(next_[d]);
     auto ts = timers_.scope("pressure set-up");
@@ -76,7 +77,8 @@ void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Fa
     // Right-hand side div(E u*) + d(eps)/dt, with the Open-side boundary values (added right
     // after the flux of their axis, as the terms of one cell are summed in that order).
     const SideBc* open[6];
-    for (int q = 0; q < 6; ++q) open[q] = params_.bc[q].type == BcType::Open ? &params_.bc[q] : nullptr;
+    for (int q = 0; q < 6; ++q)  // a cut side (Open on a block) has no boundary pressure
+      open[q] = params_.bc[q].type == BcType::Open && !sync_->is_cut(q) ? &params_.bc[q] : nullptr;
     const std::array<int, 3> n = g_.n();
     auto open_term = [&](int d, int h, int i, int j, int k) {
       std::array<int, 3> f{i, j, k};
@@ -130,7 +132,7 @@ void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Fa
       const double* src_row = phi_.data() + static_cast<long>(nx) * (j + static_cast<long>(ny) * k);
       for (int i = 0; i < nx; ++i) pr[i] = src_row[i];
     }
-  fill_scalar_ghosts(g_, params_.bc, p, ScalarKind::Pressure);
+  sync_->fill_scalar(p, ScalarKind::Pressure);
   // u = u* - c_f (p_c - p_{c-d})/dx on the active faces; the ghost fill sets the others.
   for (int d = 0; d < 3; ++d) {
     Field& u = *vel[d];
@@ -150,7 +152,7 @@ void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Fa
         for (int i = lo[0]; i < hi[0]; ++i) ur[i] = us[i] - cr[i] * (pr[i] - pr[i - sp]) / dx;
       }
   }
-  fill_velocity_ghosts(g_, params_.bc, *vel[0], *vel[1], *vel[2]);
+  sync_->fill_velocity(*vel[0], *vel[1], *vel[2]);
 }
 
 }  // namespace cgdem::fluid

@@ -56,23 +56,25 @@ class DistPreconditioner {
 // Throws cgdem::Error for an unknown name (or "pfmg" in a build without hypre).
 std::unique_ptr<DistPreconditioner> make_dist_preconditioner(const std::string& name, const DistPoisson& op);
 
-class DistPressureSolver {
+// A pressure::PressureSolver on this rank's block (the FluidSolver of a block takes it).
+class DistPressureSolver final : public pressure::PressureSolver {
  public:
   // Throws cgdem::Error (on every rank) for bad options, a grid that disagrees with blocks, or
   // a periodic side.
   DistPressureSolver(MPI_Comm comm, const GridBlocks& blocks, const pressure::GridSpec& global,
                      const DistOptions& opt);
-  ~DistPressureSolver();
+  ~DistPressureSolver() override;
   DistPressureSolver(const DistPressureSolver&) = delete;
   DistPressureSolver& operator=(const DistPressureSolver&) = delete;
 
   // This block's face coefficients in its local MAC layout (dist_poisson.hpp). Collective.
-  void set_coefficients(const std::vector<double>& ax, const std::vector<double>& ay, const std::vector<double>& az);
+  void set_coefficients(const std::vector<double>& ax, const std::vector<double>& ay,
+                        const std::vector<double>& az) override;
   // rhs and phi on this block's cells; phi is the initial guess on entry (a zero guess when
   // it is zero on every rank). Stats are global (iterations, rel_residual, seconds of this
   // rank). Collective.
-  pressure::SolveStats solve(const std::vector<double>& rhs, std::vector<double>& phi);
-  void set_rel_tol(double rel_tol);
+  pressure::SolveStats solve(const std::vector<double>& rhs, std::vector<double>& phi) override;
+  void set_rel_tol(double rel_tol) override;
   DistPoisson& op() { return op_; }
 
  private:

@@ -34,7 +34,25 @@ GridBlocks::GridBlocks(const std::array<int, 3>& global_cells, Dims dims, int ra
   init(rank);
 }
 
+GridBlocks::GridBlocks(const std::array<int, 3>& global_cells, const Starts& starts, int rank)
+    : n_(global_cells), starts_(starts) {
+  check_grid(n_);
+  for (int a = 0; a < 3; ++a) {
+    const auto& s = starts_[a];
+    if (s.size() < 2 || s.front() != 0 || s.back() != n_[a])
+      throw Error(fmt::format("air blocks: the run starts along {} must go from 0 to {} cells", "xyz"[a], n_[a]));
+    dims_[a] = static_cast<int>(s.size()) - 1;
+    for (size_t m = 1; m < s.size(); ++m)
+      if (s[m] - s[m - 1] < (dims_[a] > 1 ? fluid::kGhost + 1 : 1))
+        throw Error(fmt::format("air blocks: run {} along {} has {} cells (cells {} .. {}); a block needs at least {} "
+                                "(kGhost + 1) along a cut axis",
+                                m - 1, "xyz"[a], s[m] - s[m - 1], s[m - 1], s[m], fluid::kGhost + 1));
+  }
+  init(rank);
+}
+
 int GridBlocks::run_start(int a, int m) const {
+  if (!starts_[a].empty()) return starts_[a][m];
   return static_cast<int>(static_cast<long>(n_[a]) * m / dims_[a]);
 }
 
@@ -49,7 +67,7 @@ void GridBlocks::init(int rank) {
   rank_ = rank;
   coords_ = {rank % dims_[0], (rank / dims_[0]) % dims_[1], rank / (dims_[0] * dims_[1])};
   for (int a = 0; a < 3; ++a) {
-    if (dims_[a] > 1 && n_[a] / dims_[a] < fluid::kGhost + 1)
+    if (starts_[a].empty() && dims_[a] > 1 && n_[a] / dims_[a] < fluid::kGhost + 1)
       throw Error(fmt::format("air blocks: {} blocks along axis {} leave fewer than {} cells per block of {} "
                               "(the halo exchange needs kGhost + 1 = {})",
                               dims_[a], "xyz"[a], fluid::kGhost + 1, n_[a], fluid::kGhost + 1));

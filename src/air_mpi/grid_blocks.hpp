@@ -36,6 +36,12 @@ class GridBlocks {
   // ranks < 1, or blocks thinner than kGhost + 1 cells along a cut axis.
   GridBlocks(const std::array<int, 3>& global_cells, int ranks, int rank);
   GridBlocks(const std::array<int, 3>& global_cells, Dims dims, int rank);
+  // Uneven blocks: starts[a] lists the first cell of every run along a, 0 = s_a(0) < s_a(1)
+  // < ... < s_a(p_a) = n_a (p_a = starts[a].size() - 1), e.g. cuts balanced on the parcels.
+  // Throws cgdem::Error when a list does not span the axis, does not increase, or leaves a
+  // run shorter than kGhost + 1 cells (on a cut axis).
+  using Starts = std::array<std::vector<int>, 3>;
+  GridBlocks(const std::array<int, 3>& global_cells, const Starts& starts, int rank);
 
   const std::array<int, 3>& global_cells() const { return n_; }
   const Dims& dims() const { return dims_; }
@@ -65,6 +71,7 @@ class GridBlocks {
 
   std::array<int, 3> n_;
   Dims dims_;
+  Starts starts_;  // empty: the even runs floor(n_a m / p_a)
   int rank_ = 0;
   Dims coords_{};
   std::array<int, 3> lo_{}, hi_{};

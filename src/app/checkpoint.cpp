@@ -34,11 +34,6 @@ void get_field(io::ArchiveReader& r, fluid::Field& f, const std::string& name) {
   std::copy(v.begin(), v.end(), f.data());
 }
 
-void put_air(io::ArchiveWriter& w, const fluid::FluidState& a) {
-  w.tag("air");
-  w.put(a.t);
-  for (const fluid::Field* f : {&a.u, &a.v, &a.w, &a.p, &a.eps, &a.eps_old}) put_field(w, *f);
-}
 
 std::string read_all(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -49,6 +44,20 @@ std::string read_all(const std::string& path) {
 }
 
 }  // namespace
+
+void put_air(io::ArchiveWriter& w, const fluid::FluidState& a) {
+  w.tag("air");
+  w.put(a.t);
+  for (const fluid::Field* f : {&a.u, &a.v, &a.w, &a.p, &a.eps, &a.eps_old}) put_field(w, *f);
+}
+
+void get_air(io::ArchiveReader& r, fluid::FluidState& air) {
+  r.tag("air");
+  r.get(air.t);
+  const char* names[6] = {"u", "v", "w", "p", "eps", "eps_old"};
+  fluid::Field* fs[6] = {&air.u, &air.v, &air.w, &air.p, &air.eps, &air.eps_old};
+  for (int i = 0; i < 6; ++i) get_field(r, *fs[i], names[i]);
+}
 
 void write_checkpoint(const std::string& path, const std::string& config, const DemSolver& dem,
                       const fluid::FluidState* air, const DieDiagnostics& diag, const RunCounters& c) {
@@ -90,13 +99,7 @@ std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::Flui
   if (dem.particles().size() + dem.removed() != n_case)
     throw Error(fmt::format("checkpoint {} holds {} particles (+{} removed), the case inserts {}", path,
                             dem.particles().size(), dem.removed(), n_case));
-  if (air) {
-    r.tag("air");
-    r.get(air->t);
-    const char* names[6] = {"u", "v", "w", "p", "eps", "eps_old"};
-    fluid::Field* fs[6] = {&air->u, &air->v, &air->w, &air->p, &air->eps, &air->eps_old};
-    for (int i = 0; i < 6; ++i) get_field(r, *fs[i], names[i]);
-  }
+  if (air) get_air(r, *air);
   diag.load(r);
   r.tag("counters");
   if (version == 1) {  // before max_divergence_walls

@@ -36,6 +36,11 @@ std::string read_checkpoint(const std::string& path, DemSolver& dem, fluid::Flui
 
 // 64-bit FNV-1a digest of the physical state (DEM archive and air fields), printed at the
 // end of a run so that two runs can be compared bit for bit.
+// The air state (t and the fields u, v, w, p, eps, eps_old with their ghost layers) as a
+// checkpoint holds it; get_air throws cgdem::Error for fields of another grid size.
+void put_air(io::ArchiveWriter& w, const fluid::FluidState& air);
+void get_air(io::ArchiveReader& r, fluid::FluidState& air);
+
 uint64_t state_digest(const DemSolver& dem, const fluid::FluidState* air);
 
 // Keeps the comment lines, the header and the rows whose first column (time) is <= t.

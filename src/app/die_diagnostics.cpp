@@ -121,14 +121,18 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
     if (it != history_.end() && t - it->t > 0.5 * spec_.rate_window)
       r.transfer_rate = (r.mass_in_die - it->mass) / (t - it->t);
   }
+  const std::vector<PressureSum> sums = air ? pressure_sums(*air, air->grid, *fp) : std::vector<PressureSum>{};
+  r.pressure = mean_pressures(sums);
+  return r;
+}
+
+std::vector<DieDiagnostics::PressureSum> DieDiagnostics::pressure_sums(const fluid::FluidState& air, const fluid::MacGrid& whole,
+                                                       const fluid::FluidParams& fp) const {
+  std::vector<PressureSum> out;
+  const auto& g = air.grid;
+  // Reference: the still-air pressure, p_open at the top open side, hydrostatic below.
+  const Vec3 top = whole.origin + whole.dx * Vec3{0.5 * whole.nx, 0.5 * whole.ny, double(whole.nz)};
   for (const auto& c : spec_.cells) {
-    if (!air) {
-      r.pressure.push_back(std::numeric_limits<double>::quiet_NaN());
-      continue;
-    }
-    const auto& g = air->grid;
-    // Reference: the still-air pressure, p_open at the top open side, hydrostatic below.
-    const Vec3 top = g.origin + g.dx * Vec3{0.5 * g.nx, 0.5 * g.ny, double(g.nz)};
     // Only the index range the box can touch (one cell of margin against rounding); the
     // exact containment test below decides.
     auto range = [&](double lo, double hi, double o, int n, int& a, int& b) {
@@ -139,19 +143,27 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
     range(c.lo.x, c.hi.x, g.origin.x, g.nx, i0, i1);
     range(c.lo.y, c.hi.y, g.origin.y, g.ny, j0, j1);
     range(c.lo.z, c.hi.z, g.origin.z, g.nz, k0, k1);
-    double sum = 0;
-    int n = 0;
+    PressureSum ps;
     for (int k = k0; k <= k1; ++k)
       for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i) {
           const Vec3 x = g.cell_centre(i, j, k);
           if (x.x < c.lo.x || x.x > c.hi.x || x.y < c.lo.y || x.y > c.hi.y || x.z < c.lo.z || x.z > c.hi.z) continue;
-          sum += air->p(i, j, k) - fp->bc[5].pressure - fp->rho * dot(fp->gravity, x - top);
-          ++n;
+          ps.sum += air.p(i, j, k) - fp.bc[5].pressure - fp.rho * dot(fp.gravity, x - top);
+          ++ps.cells;
         }
-    r.pressure.push_back(n ? sum / n : std::numeric_limits<double>::quiet_NaN());
+    out.push_back(ps);
   }
-  return r;
+  return out;
+}
+
+std::vector<double> DieDiagnostics::mean_pressures(const std::vector<PressureSum>& sums) const {
+  std::vector<double> out;
+  for (size_t c = 0; c < spec_.cells.size(); ++c) {
+    const bool have = c < sums.size() && sums[c].cells > 0;
+    out.push_back(have ? sums[c].sum / sums[c].cells : std::numeric_limits<double>::quiet_NaN());
+  }
+  return out;
 }
 
 void DieDiagnostics::save(io::ArchiveWriter& w) const {

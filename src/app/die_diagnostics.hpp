@@ -70,6 +70,17 @@ class DieDiagnostics {
   void observe(double t, const Particles& p, double horizon = 0);
   // A row for diagnostics.csv (air may be null).
   DiagnosticsRow row(double t, const Particles& p, const fluid::FluidState* air, const fluid::FluidParams* fp) const;
+  // The pressure cells' gauge pressure summed over the cells of `air` (the whole grid, or one
+  // block of `whole`) whose centres lie in each, and their count: the row's pressures are
+  // the sums over all blocks divided by the counts (mean_pressures; NaN for a cell box
+  // without air cells or without air).
+  struct PressureSum {
+    double sum = 0;
+    long cells = 0;
+  };
+  std::vector<PressureSum> pressure_sums(const fluid::FluidState& air, const fluid::MacGrid& whole,
+                                         const fluid::FluidParams& fp) const;
+  std::vector<double> mean_pressures(const std::vector<PressureSum>& sums) const;
   std::string csv_header() const;
   std::string csv_line(const DiagnosticsRow& r) const;
 

@@ -33,52 +33,9 @@ void check_particles(const DemSolver& dem, double max_speed) {
   app::check_particles(dem.particles(), dem.particles().size(), dem.steps(), dem.time(), max_speed);
 }
 
-// Stops the run on a non-finite or runaway air velocity or pressure, naming the cell.
-void check_air(const fluid::FluidState& air, double max_speed, long step) {
-  const auto& g = air.grid;
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const double u = air.u(i, j, k), v = air.v(i, j, k), w = air.w(i, j, k), p = air.p(i, j, k);
-        const char* what = nullptr;
-        if (!std::isfinite(p)) what = "a non-finite pressure";
-        else if (!(std::fabs(u) <= max_speed && std::fabs(v) <= max_speed && std::fabs(w) <= max_speed))
-          what = "a non-finite or runaway air velocity";
-        if (!what) continue;
-        const Vec3 x = g.cell_centre(i, j, k);
-        throw RunError(fmt::format(
-            "fluid step {}, t = {:.6g} s: cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m has {} (u = [{:.4g}, {:.4g}, "
-            "{:.4g}] m/s, p = {:.4g} Pa; output.max_speed = {:g}). The run stopped; the last good state is "
-            "last_good.h5 in the output folder (checkpoint.bin continues from there with --restart).",
-            step, air.t, i, j, k, x.x, x.y, x.z, what, u, v, w, p, max_speed));
-      }
-}
-
 // Particles whose centre lies inside a wall (tunnelled): counted, not hidden.
 long count_inside_walls(const DemSolver& dem) {
   return app::count_inside_walls(dem.scene(), dem.time(), dem.particles(), dem.particles().size());
-}
-
-// Cell-centred air fields for a snapshot: eps, p, wall fraction alpha, velocity.
-void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
-                        const fluid::FluidSolver& fluid) {
-  const auto& g = air.grid;
-  const size_t n = static_cast<size_t>(g.cells());
-  io::CellScalars s{{"eps", std::vector<double>(n)}, {"p", std::vector<double>(n)}, {"alpha", std::vector<double>(n)}};
-  io::CellVectors v{{"u", {std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)}}};
-  const auto& alpha = fluid.ibm().alpha_cell;
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const size_t c = static_cast<size_t>(i + g.nx * (j + static_cast<long>(g.ny) * k));
-        s["eps"][c] = air.eps(i, j, k);
-        s["p"][c] = air.p(i, j, k);
-        s["alpha"][c] = alpha.empty() ? 0.0 : alpha(i, j, k);
-        v["u"][0][c] = 0.5 * (air.u(i, j, k) + air.u(i + 1, j, k));
-        v["u"][1][c] = 0.5 * (air.v(i, j, k) + air.v(i, j + 1, k));
-        v["u"][2][c] = 0.5 * (air.w(i, j, k) + air.w(i, j, k + 1));
-      }
-  series.write(step, air.t, g.nx, g.ny, g.nz, g.origin, Vec3{g.dx, g.dx, g.dx}, s, v);
 }
 
 }  // namespace
@@ -196,7 +153,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   auto write_snapshot = [&]() {
     io::ParticleTable t = to_table(dem->particles());
     snapshots.write(dem->steps(), dem->time(), t);
-    if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), air, *fluid);
+    if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), air, fluid->ibm().alpha_cell);
     io::write_particles_h5(last_good, t, attrs);  // atomic: always a consistent state
   };
 

@@ -103,4 +103,24 @@ void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec) {
     fmt::print("the powder has not reached the die floor yet\n");
 }
 
+void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
+                        const fluid::Field& alpha) {
+  const auto& g = air.grid;
+  const size_t n = static_cast<size_t>(g.cells());
+  io::CellScalars s{{"eps", std::vector<double>(n)}, {"p", std::vector<double>(n)}, {"alpha", std::vector<double>(n)}};
+  io::CellVectors v{{"u", {std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)}}};
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t c = static_cast<size_t>(i + g.nx * (j + static_cast<long>(g.ny) * k));
+        s["eps"][c] = air.eps(i, j, k);
+        s["p"][c] = air.p(i, j, k);
+        s["alpha"][c] = alpha.empty() ? 0.0 : alpha(i, j, k);
+        v["u"][0][c] = 0.5 * (air.u(i, j, k) + air.u(i + 1, j, k));
+        v["u"][1][c] = 0.5 * (air.v(i, j, k) + air.v(i, j + 1, k));
+        v["u"][2][c] = 0.5 * (air.w(i, j, k) + air.w(i, j, k + 1));
+      }
+  series.write(step, air.t, g.nx, g.ny, g.nz, g.origin, Vec3{g.dx, g.dx, g.dx}, s, v);
+}
+
 }  // namespace cgdem::app

@@ -14,6 +14,8 @@
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "core/timers.hpp"
+#include "fluid/fluid_state.hpp"
+#include "io/grid_snapshot_series.hpp"
 
 namespace cgdem::app {
 
@@ -64,5 +66,10 @@ void write_impacts(const std::string& dir, const DieDiagnostics& diag);
 
 // The closing lines about the die filling: the front's arrival and the impact velocity.
 void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec);
+
+// Cell-centred air fields for a snapshot of the whole grid: eps, p, the wall fraction alpha
+// (alpha_cell may be empty: 0), the velocity averaged onto the cells.
+void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
+                        const fluid::Field& alpha_cell);
 
 }  // namespace cgdem::app

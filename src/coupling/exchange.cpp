@@ -19,13 +19,18 @@ Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species,
   for (int d = 0; d < 3; ++d) {
     blocked_[d] = fluid::make_face_field(g_, d);
     const auto e = blocked_[d].extent();
+    // Across the face (axes other than d) the ghost layers too: on a block over MPI ranks the
+    // kernels reach the neighbour's boundary faces there (serially they are never read).
+    const int g = fluid::kGhost;
     for (int h = 0; h < 2; ++h) {
       if (params_.bc[2 * d + h].type != fluid::BcType::Wall) continue;
       const int f = h == 0 ? 0 : e[d] - 1;
-      for (int k = 0; k < e[2]; ++k)
-        for (int j = 0; j < e[1]; ++j)
-          for (int i = 0; i < e[0]; ++i)
-            if (std::array<int, 3>{i, j, k}[d] == f) blocked_[d](i, j, k) = 1;
+      for (int k = -g; k < e[2] + g; ++k)
+        for (int j = -g; j < e[1] + g; ++j)
+          for (int i = -g; i < e[0] + g; ++i) {
+            const std::array<int, 3> q{i, j, k};
+            if (q[d] == f) blocked_[d](i, j, k) = 1;
+          }
     }
   }
 }
@@ -40,8 +45,17 @@ Weights Exchange::face_weights(int d, const Vec3& x, const fluid::Field& layout)
   return masked(tsc_stencil(faces_[d], x), w ? walls_->alpha_face[d] : no_alpha_, blocked_[d], layout);
 }
 
-void Exchange::weights(const Particles& p, ParcelWeights& w) const {
-  const long n = static_cast<long>(p.size());
+void Exchange::set_sync(fluid::FieldSync* sync) {
+  sync_ = sync;
+  std::array<bool, 6> cut{};
+  for (int s = 0; s < 6; ++s) cut[s] = sync && sync->is_cut(s);
+  cells_.ghost_side = cut;
+  for (auto& L : faces_) L.ghost_side = cut;
+}
+
+void Exchange::weights(const Particles& p, size_t count, ParcelWeights& w) const {
+  if (count > p.size()) throw Error("exchange: weights of more parcels than there are");
+  const long n = static_cast<long>(count);
   w.cell.resize(n);
   for (auto& f : w.face) f.resize(n);
 #pragma omp parallel for schedule(static) if (n >= 1024)
@@ -60,11 +74,12 @@ VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
 VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const {
   fluid::Field vs = fluid::make_cell_field(g_);
   VoidStats st;
-  for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
+  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
     const double V = volume_[p.species[i]];
     deposit(w.cell[i], V, vs);
     st.parcel_volume += V;
   }
+  if (sync_) sync_->sum_deposits(vs, fluid::kCells);
   const double vc = g_.dx * g_.dx * g_.dx;
   for (int k = 0; k < g_.nz; ++k)
     for (int j = 0; j < g_.ny; ++j)
@@ -75,20 +90,29 @@ VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fl
         if (raw < params_.eps_min) ++st.clipped_cells;
         eps(i, j, k) = std::max(params_.eps_min, raw);
       }
+  if (sync_) sync_->fill_scalar(eps, fluid::ScalarKind::ZeroGradient);  // the parcels read it there
   return st;
 }
 
 std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState& air) const {
   fluid::Field pg = air.p;
-  fluid::fill_scalar_ghosts(g_, params_.bc, pg, fluid::ScalarKind::Pressure);
+  if (sync_)
+    sync_->fill_scalar(pg, fluid::ScalarKind::Pressure);
+  else
+    fluid::fill_scalar_ghosts(g_, params_.bc, pg, fluid::ScalarKind::Pressure);
   std::array<fluid::Field, 3> grad;
   for (int d = 0; d < 3; ++d) {
     grad[d] = fluid::make_face_field(g_, d);
     const auto e = grad[d].extent();
     const auto u = fluid::unit(d);
-    for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i)
+    // Every face whose two cells exist, ghost layers included: on a block over MPI ranks
+    // the kernels of parcels next to a cut read them (serially only interior faces are read).
+    const int g = fluid::kGhost;
+    std::array<int, 3> lo{-g, -g, -g}, hi{e[0] + g, e[1] + g, e[2] + g};
+    lo[d] = -g + 1, hi[d] = e[d] + g - 1;
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i)
           grad[d](i, j, k) = (pg(i, j, k) - pg(i - u[0], j - u[1], k - u[2])) / g_.dx;
   }
   return grad;
@@ -108,7 +132,7 @@ Exchange::AirSample Exchange::sample(const fluid::FluidState& air, const std::ar
 
 void Exchange::air_to_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p) const {
   const auto grad = pressure_gradient(air);
-  const int n = static_cast<int>(p.size());
+  const int n = static_cast<int>(w.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
     const int s = p.species[i];
@@ -122,7 +146,7 @@ void Exchange::air_to_parcels(const fluid::FluidState& air, const ParcelWeights&
 
 void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
                                Particles& p) const {
-  const int n = static_cast<int>(p.size());
+  const int n = static_cast<int>(w.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {
     Vec3 u;
@@ -142,7 +166,7 @@ void Exchange::parcels_to_air(const Particles& p, const ParcelWeights& w, double
     src.K[d] = fluid::make_face_field(g_, d);
     src.Kv[d] = fluid::make_face_field(g_, d);
   }
-  for (size_t i = 0; i < p.size(); ++i) {  // serial: fixed summation order
+  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
     const double c = p.drag[i] * inv_vc;
     if (c == 0) continue;
     const Vec3 cv = inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i]);  // c vbar
@@ -154,6 +178,7 @@ void Exchange::parcels_to_air(const Particles& p, const ParcelWeights& w, double
   for (int d = 0; d < 3; ++d) {
     sync_periodic_face(d, periodic_, src.K[d]);
     sync_periodic_face(d, periodic_, src.Kv[d]);
+    if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
   }
 }
 

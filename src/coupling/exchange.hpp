@@ -49,6 +49,7 @@
 
 #include "coupling/drag.hpp"
 #include "coupling/kernel.hpp"
+#include "fluid/field_sync.hpp"
 #include "fluid/fluid_state.hpp"
 #include "fluid/ibm.hpp"
 #include "particles/particles.hpp"
@@ -84,10 +85,12 @@ class Exchange {
   Exchange(const fluid::MacGrid& g, const std::vector<Species>& species, ExchangeParams params);
 
   // The weights of every parcel at its current position with the current walls (parallel).
-  void weights(const Particles& p, ParcelWeights& w) const;
+  void weights(const Particles& p, ParcelWeights& w) const { weights(p, p.size(), w); }
+  // Of parcels 0 .. n-1 only (over MPI ranks: the owned ones, not the ghosts).
+  void weights(const Particles& p, size_t n, ParcelWeights& w) const;
 
-  // Every transfer takes the weights of the parcels' current positions (precondition:
-  // w.size() == p.size(), built by weights() after the parcels last moved).
+  // Every transfer takes the weights of the parcels' current positions and acts on the
+  // parcels 0 .. w.size()-1 (precondition: built by weights() after the parcels last moved).
   // eps from the parcel positions (writes every interior cell of eps).
   VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const;
   VoidStats void_fraction(const Particles& p, fluid::Field& eps) const;  // builds the weights
@@ -102,7 +105,14 @@ class Exchange {
   void correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f, Particles& p) const;
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
+  // Over MPI ranks their ghost layers on the cut sides must hold the neighbours' values.
   void set_walls(const fluid::IbmFractions* walls) { walls_ = walls; }
+  // On a block of a grid over MPI ranks (fluid/field_sync.hpp; the grid and params.bc are
+  // the block's): the kernels reach into the ghost layers on the cut sides, deposits are
+  // summed over the blocks, the void fraction's and pressure's ghosts come from the
+  // neighbours. Without it (the default) the exchange is the serial one. VoidStats then
+  // hold this block's part (the caller sums them). The sync must outlive the exchange.
+  void set_sync(fluid::FieldSync* sync);
 
   const ExchangeParams& params() const { return params_; }
   const std::array<bool, 3>& periodic() const { return periodic_; }
@@ -119,6 +129,7 @@ class Exchange {
   Weights cell_weights(const Vec3& x, const fluid::Field& layout) const;
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
   const fluid::IbmFractions* walls_ = nullptr;
+  fluid::FieldSync* sync_ = nullptr;
   fluid::Field no_alpha_;
   // 1 on the boundary faces of the domain's Wall sides (their velocity is prescribed, so
   // drag deposited there would never reach the air), 0 elsewhere.

@@ -30,7 +30,9 @@ Stencil tsc_stencil(const Lattice& L, const Vec3& x) {
         i %= n;
         if (i < 0) i += n;
       } else {
-        i = i < 0 ? 0 : (i >= n ? n - 1 : i);
+        const long lo = L.ghost_side[2 * a] ? -fluid::kGhost : 0;
+        const long hi = L.ghost_side[2 * a + 1] ? n - 1 + fluid::kGhost : n - 1;
+        i = i < lo ? lo : (i > hi ? hi : i);
       }
       s.idx[a][m] = static_cast<int>(i);
     }

@@ -23,6 +23,10 @@ struct Lattice {
   double h = 1;               // node spacing [m]
   std::array<int, 3> n{};     // nodes per axis
   std::array<bool, 3> periodic{false, false, false};
+  // On a block of a grid over MPI ranks: beyond side 2 a + h lie the ghost layers of a
+  // neighbouring block. Nodes there are kept, not folded back (up to kGhost of them; the
+  // deposit is then summed into the block that owns them, fluid/field_sync.hpp).
+  std::array<bool, 6> ghost_side{};
 };
 
 // Cell centres of the grid.

@@ -10,6 +10,10 @@
 #include <memory>
 #include <sstream>
 
+#include "air_mpi/dist_pressure.hpp"
+#include "air_mpi/field_gather.hpp"
+#include "air_mpi/halo_sync.hpp"
+#include "air_mpi/pfmg.hpp"
 #include "app/checkpoint.hpp"
 #include "app/energy_csv.hpp"
 #include "app/run_checks.hpp"
@@ -19,6 +23,7 @@
 #include "core/revision.hpp"
 #include "core/timers.hpp"
 #include "io/atomic_file.hpp"
+#include "io/grid_snapshot_series.hpp"
 #include "io/particle_h5.hpp"
 #include "io/snapshot_series.hpp"
 #include "parallel/mpi/distributed_dem.hpp"
@@ -71,25 +76,28 @@ struct RunHeader {
   int ranks = 1;  // that wrote it (information)
 };
 
+// air: the whole grid's state (gathered), or null in vacuum.
 void write_portable_checkpoint(const std::string& path, const std::string& config, const RunHeader& h,
                                const parallel::PortableState& s, const DieDiagnostics& diag,
-                               const RunCounters& counters) {
+                               const RunCounters& counters, const fluid::FluidState* air) {
   io::ArchiveWriter w;
   w.put(kPortableCheckpointMagic), w.put(kPortableVersion);
   w.put_string(kGitRevision), w.put_string(config);
-  w.put<uint8_t>(0);  // no air
+  w.put<uint8_t>(air != nullptr);
   w.tag("run");
   w.put(h);
   parallel::save(w, s);
   diag.save(w);
   w.tag("counters");
   w.put(counters);
+  if (air) put_air(w, *air);
   w.tag("end");
   io::write_file_atomic(path, w.bytes());
 }
 
+// air: the whole grid's state to fill (a case with air), or null.
 std::string read_portable_checkpoint(const std::string& path, RunHeader& h, parallel::PortableState& s,
-                                     DieDiagnostics& diag, RunCounters& counters) {
+                                     DieDiagnostics& diag, RunCounters& counters, fluid::FluidState* air) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("cannot read checkpoint " + path);
   std::ostringstream ss;
@@ -105,15 +113,51 @@ std::string read_portable_checkpoint(const std::string& path, RunHeader& h, para
   if (revision != kGitRevision)
     fmt::print(stderr, "cgdem: warning: the checkpoint was written by revision {}, this is {}\n", revision,
                kGitRevision);
-  if (r.get<uint8_t>() != 0) throw Error(path + ": a checkpoint with air (not supported over MPI ranks)");
+  const bool had_air = r.get<uint8_t>() != 0;
+  if (had_air != (air != nullptr))
+    throw Error(fmt::format("checkpoint {} was written by a run {} air, the case runs {} air", path,
+                            had_air ? "with" : "without", air ? "with" : "without"));
   r.tag("run");
   r.get(h);
   parallel::load(r, s);
   diag.load(r);
   r.tag("counters");
   r.get(counters);
+  if (air) get_air(r, *air);
   r.tag("end");
   return config;
+}
+
+// The block's entries of a field of the whole grid (interior entries, the cut faces included).
+void copy_block(const air_mpi::GridBlocks& b, const fluid::Field& whole, fluid::Field& local) {
+  const auto e = local.extent();
+  const auto lo = b.lo();
+  for (int k = 0; k < e[2]; ++k)
+    for (int j = 0; j < e[1]; ++j)
+      for (int i = 0; i < e[0]; ++i) local(i, j, k) = whole(i + lo[0], j + lo[1], k + lo[2]);
+}
+
+// Cuts of the parcels' blocks moved onto the nearest cell faces of the air grid, so that
+// each rank's parcels and air cells are one block: no run shorter than kGhost + 1 cells.
+// Returns the run starts of every axis (cells) and rewrites the cuts to match.
+air_mpi::GridBlocks::Starts snap_to_cells(parallel::Decomposition::Cuts& cuts, const fluid::MacGrid& g) {
+  air_mpi::GridBlocks::Starts starts;
+  const int min_run = fluid::kGhost + 1;
+  for (int a = 0; a < 3; ++a) {
+    const int n = g.n()[a], p = static_cast<int>(cuts[a].size()) - 1;
+    if (p > 1 && n < p * min_run)
+      throw ConfigError(fmt::format("the air grid has {} cells along {}, too few for {} blocks of at least {} cells",
+                                    n, "xyz"[a], p, min_run));
+    starts[a] = {0};
+    for (int m = 1; m < p; ++m) {
+      int c = static_cast<int>(std::lround((cuts[a][m] - g.origin[a]) / g.dx));
+      c = std::clamp(c, starts[a].back() + min_run, n - (p - m) * min_run);
+      starts[a].push_back(c);
+      cuts[a][m] = g.origin[a] + g.dx * c;
+    }
+    starts[a].push_back(n);
+  }
+  return starts;
 }
 
 uint64_t digest(const parallel::PortableState& s) {
@@ -133,12 +177,14 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   MPI_Comm_rank(comm, &R.rank);
   MPI_Comm_size(comm, &R.size);
   const bool root = R.rank == 0;
-  if (air_case.enabled)
-    throw ConfigError(fmt::format(
-        "this case has air ([air]); on {} MPI ranks `cgdem run` runs particle cases in vacuum only: the air's halo "
-        "exchange and distributed pressure solve are not yet part of the run (docs/scale_out.md). Run it in one "
-        "process (without mpirun), or without [air]",
-        R.size));
+  const bool with_air = air_case.enabled;
+  const fluid::MacGrid& grid = air_case.grid;
+  if (with_air) {
+    for (int a = 0; a < 3; ++a)
+      if (c.dem.periodic[a])
+        throw ConfigError(fmt::format("periodic axes are not supported over MPI ranks (the {} axis is periodic)",
+                                      "xyz"[a]));
+  }
   const fs::path out(c.output.dir);
   const std::string case_dir = fs::path(info.case_file).parent_path().string();
   io::Attributes attrs{{"cgdem_revision", kGitRevision}, {"config", info.resolved_config},
@@ -168,19 +214,35 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   for (const auto& s : c.species) r_max = std::max(r_max, 0.5 * s.diameter());
   const double range = 2 * r_max + dem->params().skin;
   parallel::PortableState from;  // a restart's parcels (read once here, kept for below)
+  fluid::FluidState whole_air;   // and its air, on the whole grid
+  if (with_air) whole_air = fluid::make_fluid_state(grid);
   std::string stored_config;
   if (restart)
-    together(R, "restart", false,
-             [&] { stored_config = read_portable_checkpoint(info.restart, header, from, diag, counters); });
+    together(R, "restart", false, [&] {
+      stored_config =
+          read_portable_checkpoint(info.restart, header, from, diag, counters, with_air ? &whole_air : nullptr);
+    });
   for (const Vec3& x : restart ? from.p.x : dem->particles().x) where.push_back(x);
   Vec3 lo = box.hi, hi = box.lo;
   for (const Vec3& x : where) lo = cmin(lo, x), hi = cmax(hi, x);
   Vec3 extent;
   for (int a = 0; a < 3; ++a) extent[a] = std::max(hi[a] - lo[a], 0.0) + range;
-  const parallel::Decomposition d =
-      R.size == 1 ? parallel::Decomposition(box, {1, 1, 1})
-                  : parallel::Decomposition(box, parallel::balanced_cuts(box, parallel::choose_dims(R.size, extent),
-                                                                         where, range));
+  // With air the cuts then move onto cell faces: one block of parcels and cells per rank.
+  parallel::Decomposition::Cuts cuts;
+  for (int a = 0; a < 3; ++a) cuts[a] = {box.lo[a], box.hi[a]};
+  air_mpi::GridBlocks::Starts starts;
+  together(R, "decomposition", false, [&] {
+    if (R.size > 1) cuts = parallel::balanced_cuts(box, parallel::choose_dims(R.size, extent), where, range);
+    if (!with_air) return;
+    starts = snap_to_cells(cuts, grid);
+    if (R.size > 1 && !(dem->params().skin < grid.dx))
+      throw ConfigError(fmt::format(
+          "over MPI ranks a parcel may stray half the neighbour-list skin ({:g} m) beyond its block between list "
+          "builds, and its coupling kernel must stay within the {} ghost layers of air cells: the skin must be "
+          "shorter than the cell size air.dx = {:g} m",
+          dem->params().skin, fluid::kGhost, grid.dx));
+  });
+  const parallel::Decomposition d(box, cuts);
   const long n_case = static_cast<long>(dem->particles().size());  // every rank built the whole case
   {
     Particles& p = dem->particles();
@@ -215,27 +277,85 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   }
   std::unique_ptr<parallel::DistributedDem> dist;
   together(R, "decomposition", false, [&] { dist = std::make_unique<parallel::DistributedDem>(comm, d, *dem); });
+  // The air of this rank's block: grid, boundary (cut sides marked), the distributed
+  // pressure solve, the coupling, all through one HaloSync.
+  std::unique_ptr<air_mpi::GridBlocks> blocks;
+  std::unique_ptr<air_mpi::HaloSync> sync;
+  fluid::FluidState air;
+  std::unique_ptr<fluid::FluidSolver> fluid;
+  std::unique_ptr<CoupledSolver> coupled;
+  std::string preconditioner = air_case.mpi_preconditioner;
+  // "auto": block Jacobi multigrid on a few ranks (Case 1-3 settling on 2 ranks: 62 PCG
+  // iterations per fluid step but 6.8 s of solves against pfmg's 51 and 12.7 s), hypre's
+  // PFMG beyond (its iterations do not grow with the rank count; docs/scale_out.md).
+  if (preconditioner == "auto") preconditioner = R.size <= 4 || !air_mpi::have_pfmg() ? "bj-mg" : "pfmg";
+  if (with_air) {
+    together(R, "air set-up", false, [&] {
+      blocks = std::make_unique<air_mpi::GridBlocks>(grid.n(), starts, R.rank);
+      if (blocks->dims() != d.dims()) throw Error("air blocks and parcel blocks disagree (internal)");
+    });
+    sync = std::make_unique<air_mpi::HaloSync>(comm, *blocks, grid, air_case.fluid.bc);
+    fluid::FluidParams local = air_case.fluid;
+    local.bc = sync->local_bc();
+    air_mpi::DistOptions opt;
+    opt.preconditioner = preconditioner;
+    opt.rel_tol = air_case.fluid.pressure.rel_tol;
+    opt.max_iter = air_case.fluid.pressure.max_iter;
+    together(R, "air set-up", false, [&] {
+      auto ps = std::make_unique<air_mpi::DistPressureSolver>(comm, *blocks, fluid::pressure_grid(grid, air_case.fluid),
+                                                              opt);
+      fluid = std::make_unique<fluid::FluidSolver>(sync->local_grid(), local, std::move(ps));
+    });
+    fluid->set_sync(*sync);
+    air = fluid::make_fluid_state(sync->local_grid());
+    coupling::ExchangeParams xp = air_case.exchange;
+    xp.bc = sync->local_bc();
+    coupling::Exchange exchange(sync->local_grid(), c.species, xp);
+    exchange.set_sync(sync.get());
+    coupled = std::make_unique<CoupledSolver>(*dem, *fluid, air, std::move(exchange), air_case.coupled);
+    if (restart) {  // the checkpoint's air on this block, ghosts from the boundaries and the neighbours
+      air.t = whole_air.t;
+      for (int q = 0; q < 3; ++q) copy_block(*blocks, whole_air.vel(q), air.vel(q));
+      copy_block(*blocks, whole_air.p, air.p);
+      copy_block(*blocks, whole_air.eps, air.eps);
+      copy_block(*blocks, whole_air.eps_old, air.eps_old);
+      sync->fill_velocity(air.u, air.v, air.w);
+      sync->fill_scalar(air.p, fluid::ScalarKind::Pressure);
+      sync->fill_scalar(air.eps, fluid::ScalarKind::ZeroGradient);
+      sync->fill_scalar(air.eps_old, fluid::ScalarKind::ZeroGradient);
+    }
+    whole_air = {};
+  }
   if (root) {
     if (restart)
       fmt::print("restarting from {} at t = {:.6g} s (DEM step {}), written on {} rank(s)\n", info.restart,
                  dem->time(), dem->steps(), header.ranks);
     fmt::print("cgdem {}: {} particles, {} species, {} wall parts, dt = {:g} s, t = {:g} .. {:g} s\n", kGitRevision,
                n_case - header.removed, c.species.size(), dem->scene().parts().size(), c.dem.dt, c.t_start, c.t_end);
-    std::string cuts;
+    std::string cut_text;
     for (int a = 0; a < 3; ++a)
       if (d.dims()[a] > 1) {
-        cuts += fmt::format(", {} cut at", "xyz"[a]);
-        for (int m = 1; m < d.dims()[a]; ++m) cuts += fmt::format(" {:.4g}", 1e3 * d.cuts()[a][m]);
-        cuts += " mm";
+        cut_text += fmt::format(", {} cut at", "xyz"[a]);
+        for (int m = 1; m < d.dims()[a]; ++m) cut_text += fmt::format(" {:.4g}", 1e3 * d.cuts()[a][m]);
+        cut_text += " mm";
       }
-    fmt::print("MPI: {} ranks, blocks {} x {} x {} of the domain{}\n", R.size, d.dims()[0],
-               d.dims()[1], d.dims()[2], cuts.empty() ? cuts : cuts + " (balanced on the parcels)");
-    fmt::print("air: none (vacuum)\n");
+    fmt::print("MPI: {} ranks, blocks {} x {} x {} of the domain{}\n", R.size, d.dims()[0], d.dims()[1],
+               d.dims()[2],
+               cut_text.empty() ? cut_text
+                                : cut_text + (with_air ? " (balanced on the parcels, on cell faces)" : " (balanced on the parcels)"));
+    if (with_air)
+      fmt::print("air: {} x {} x {} cells of {:g} m, fluid step <= {:g} s, pressure: distributed PCG + {} (tol {:g}), "
+                 "{}-way coupling\n",
+                 grid.nx, grid.ny, grid.nz, grid.dx, air_case.coupled.dt_fluid_max, preconditioner,
+                 air_case.fluid.pressure.rel_tol, air_case.coupled.feedback ? "two" : "one");
+    else
+      fmt::print("air: none (vacuum)\n");
     fmt::print("shortest collision time {:.4g} s ({:.1f} steps); set-up {:.2f} s\n", dem->min_collision_time(),
                dem->min_collision_time() / c.dem.dt, setup_clock.seconds());
   }
 
   std::unique_ptr<io::SnapshotSeries> snapshots;
+  std::unique_ptr<io::GridSnapshotSeries> air_snapshots;
   std::FILE *energy = nullptr, *diag_csv = nullptr;
   const std::string series_comment = fmt::format("case {}, {} MPI ranks", info.case_file, R.size);
   auto open_csv = [&](const std::string& name, const std::string& hdr) {
@@ -243,6 +363,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   };
   together(R, "output files", true, [&] {
     snapshots = std::make_unique<io::SnapshotSeries>(c.output.dir, "particles", attrs, restart);
+    if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
     energy = open_csv("energy.csv", energy_csv_header());
     if (diag_spec.enabled) diag_csv = open_csv("diagnostics.csv", diag.csv_header());
   });
@@ -263,7 +384,8 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   };
   long seen_removed = header.removed, seen_inside = 0;
   auto write_energy = [&] {
-    const EnergyBudget e = parallel::global_energy(comm, *dem);
+    EnergyBudget e = parallel::global_energy(comm, *dem);
+    if (with_air) e.work_fluid = sum_over(R, dem->fluid_work());
     const long present = sum_over(R, static_cast<long>(dem->owned())), removed = parallel::global_removed(comm, *dem);
     const long inside = sum_over(R, count_inside_walls(dem->scene(), dem->time(), dem->particles(), dem->owned()));
     together(R, "energy.csv", true, [&] {
@@ -285,20 +407,53 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   auto write_diagnostics = [&] {
     if (!diag_spec.enabled) return;
     gather(false);
+    // The pressure cells: this block's sums, added over the ranks.
+    std::vector<DieDiagnostics::PressureSum> sums;
+    if (with_air) {
+      sums = diag.pressure_sums(air, grid, air_case.fluid);
+      std::vector<double> v;
+      for (const auto& q : sums) v.push_back(q.sum), v.push_back(double(q.cells));
+      parallel::check_mpi(MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_SUM, comm),
+                          "MPI_Allreduce", "pressure cells");
+      for (size_t q = 0; q < sums.size(); ++q) sums[q].sum = v[2 * q], sums[q].cells = std::lround(v[2 * q + 1]);
+    }
     together(R, "diagnostics.csv", true, [&] {
-      std::fprintf(diag_csv, "%s\n", diag.csv_line(diag.row(dem->time(), all, nullptr, nullptr)).c_str());
+      DiagnosticsRow row = diag.row(dem->time(), all, nullptr, nullptr);
+      if (with_air) row.pressure = diag.mean_pressures(sums);
+      std::fprintf(diag_csv, "%s\n", diag.csv_line(row).c_str());
       std::fflush(diag_csv);
     });
   };
   auto check_health = [&] {
-    together(R, "health check", false,
-             [&] { check_particles(dem->particles(), dem->owned(), dem->steps(), dem->time(), c.output.max_speed); });
+    together(R, "health check", false, [&] {
+      check_particles(dem->particles(), dem->owned(), dem->steps(), dem->time(), c.output.max_speed);
+      if (with_air) check_air(air, c.output.max_speed, counters.fluid_steps, blocks->lo());
+    });
+  };
+  // The air of the whole grid on rank 0 (collective), for snapshots and checkpoints.
+  auto gather_air = [&](fluid::Field* alpha) {
+    fluid::FluidState whole;
+    whole.grid = grid;
+    whole.t = air.t;
+    for (int q = 0; q < 3; ++q) whole.vel(q) = air_mpi::gather_field(comm, *blocks, air.vel(q), q);
+    whole.p = air_mpi::gather_field(comm, *blocks, air.p, air_mpi::kCellCentred);
+    whole.eps = air_mpi::gather_field(comm, *blocks, air.eps, air_mpi::kCellCentred);
+    whole.eps_old = air_mpi::gather_field(comm, *blocks, air.eps_old, air_mpi::kCellCentred);
+    if (alpha) {
+      const fluid::Field& a = fluid->ibm().alpha_cell;
+      *alpha = air_mpi::gather_field(comm, *blocks, a.empty() ? fluid::make_cell_field(air.grid) : a,
+                                     air_mpi::kCellCentred);
+    }
+    return whole;
   };
   auto write_snapshot = [&] {
     gather(true);
+    fluid::Field alpha;
+    const fluid::FluidState whole = with_air ? gather_air(&alpha) : fluid::FluidState{};
     together(R, "snapshot", true, [&] {
       const io::ParticleTable t = to_table(all);
       snapshots->write(dem->steps(), dem->time(), t);
+      if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), whole, alpha);
       io::write_particles_h5(last_good, t, attrs);
     });
   };
@@ -311,7 +466,10 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     h.builds = dem->neighbor_builds(), h.ranks = R.size;
     h.removed_damping = sum_over(R, acc.dissipated_damping), h.removed_friction = sum_over(R, acc.dissipated_friction);
     h.removed_walls = sum_over(R, acc.work_walls), h.removed_fluid = sum_over(R, acc.work_fluid);
-    together(R, "checkpoint", true, [&] { write_portable_checkpoint(path, info.resolved_config, h, s, diag, counters); });
+    const fluid::FluidState whole = with_air ? gather_air(nullptr) : fluid::FluidState{};
+    together(R, "checkpoint", true, [&] {
+      write_portable_checkpoint(path, info.resolved_config, h, s, diag, counters, with_air ? &whole : nullptr);
+    });
   };
   auto observe = [&](double horizon) {
     if (!diag_spec.enabled) return;
@@ -337,11 +495,25 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   const long n_present = n_case - header.removed;
   long particle_steps = 0;
   while (!schedule.finished(dem->time())) {
-    dem->step();  // its exchanges raise their errors on every rank together
-    particle_steps += n_present;  // progress figure only (parcels that leave still count)
-    if (dem->steps() % observe_every == 0) {
+    if (with_air) {  // its exchanges and reductions raise their errors on every rank together
+      const CoupledStepStats st = coupled->step();
+      particle_steps += st.substeps * n_present;
+      ++counters.fluid_steps;
+      counters.pressure_iterations += st.fluid.pressure_iterations;  // global figures, the same on every rank
+      counters.max_divergence = std::max(counters.max_divergence, st.fluid.max_divergence);
+      counters.max_divergence_walls = std::max(counters.max_divergence_walls, st.fluid.max_divergence_walls);
+      if (!st.fluid.pressure_converged && counters.unconverged++ == 0 && root)
+        fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
+                   "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
       auto ts = out_timers.scope(t_observe);
-      observe(observe_every * c.dem.dt);
+      observe(st.dt_fluid);  // the next step: as long as this one
+    } else {
+      dem->step();  // its exchanges raise their errors on every rank together
+      particle_steps += n_present;  // progress figure only (parcels that leave still count)
+      if (dem->steps() % observe_every == 0) {
+        auto ts = out_timers.scope(t_observe);
+        observe(observe_every * c.dem.dt);
+      }
     }
     const double t = dem->time();
     const OutputSchedule::Due due = schedule.after_step(t);
@@ -376,10 +548,15 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   }
   if (root) progress.finish();
   const double wall = progress.seconds();
-  const EnergyBudget e = parallel::global_energy(comm, *dem);
+  EnergyBudget e = parallel::global_energy(comm, *dem);
+  if (with_air) e.work_fluid = sum_over(R, dem->fluid_work());
   const long present = sum_over(R, static_cast<long>(dem->owned())), removed = parallel::global_removed(comm, *dem);
   const long inside = sum_over(R, count_inside_walls(dem->scene(), dem->time(), dem->particles(), dem->owned()));
   const long builds = dem->neighbor_builds();
+  const long cells = with_air ? blocks->local_count() : 0;
+  long cells_min = cells, cells_max = cells;
+  MPI_Allreduce(MPI_IN_PLACE, &cells_min, 1, MPI_LONG, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &cells_max, 1, MPI_LONG, MPI_MAX, comm);
   const parallel::PortableState final_state =
       parallel::gather_state(comm, parallel::portable_state(dem->particles(), dem->neighbor_list(), dem->owned()));
   // The ranks' own shares of the work, for the balance line.
@@ -396,6 +573,16 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
                                   diag.front_impact()));
     fmt::print("\n{}", dem->timers().table("per-phase time (DEM, rank 0)"));
     fmt::print("{}", dist->timers().table("inside 'neighbour lists': exchanges (rank 0)"));
+    if (with_air) {
+      fmt::print("{}", coupled->timers().table("per-phase time (coupling, rank 0)"));
+      fmt::print("{}", fluid->timers().table("per-phase time (air, rank 0)"));
+      fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
+                 "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",
+                 counters.fluid_steps,
+                 counters.fluid_steps ? double(counters.pressure_iterations) / counters.fluid_steps : 0.0,
+                 counters.unconverged, counters.max_divergence, counters.max_divergence_walls);
+      fmt::print("air cells per rank: {} .. {}\n", cells_min, cells_max);
+    }
     fmt::print("{}", out_timers.table("per-phase time (output, rank 0)"));
     fmt::print("DEM steps {}, wall {:.1f} s, {:.3g} particle-steps/s on {} ranks, neighbour-list builds {}\n",
                dem->steps(), wall, particle_steps / std::max(wall, 1e-9), R.size, builds);
@@ -404,9 +591,10 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
                removed, inside, e.mass);
     if (diag_spec.enabled) print_front(diag, diag_spec);
     fmt::print("portable state digest {:016x} at t = {:.9g} s\n", digest(final_state), dem->time());
-    fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5), last_good.h5, "
+    fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
                "checkpoint.bin (portable: restarts on any number of ranks), config.resolved.toml\n",
-               c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "");
+               c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "",
+               with_air ? ", air.xdmf (+ air_*.h5)" : "");
   });
   return 0;
 }

@@ -4,7 +4,7 @@
 # 2 x 2 x 1 and 4 x 1 x 1 cuts. Launcher flags are OpenMPI's (scripts/install-deps.sh).
 file(GLOB CGDEM_MPI_AIR_TEST_SRCS CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
 add_executable(test_parallel_mpi_air ${CGDEM_MPI_AIR_TEST_SRCS})
-target_link_libraries(test_parallel_mpi_air PRIVATE cgdem_air_mpi GTest::gtest)
+target_link_libraries(test_parallel_mpi_air PRIVATE cgdem_air_mpi cgdem_coupling GTest::gtest)
 target_compile_options(test_parallel_mpi_air PRIVATE -Wall -Wextra)
 foreach(np 1 2 4)
   add_test(NAME parallel.mpi_air_np${np}
