@@ -1,5 +1,5 @@
-# `mpirun -np N cgdem run` of a particle case against the single-process run, and restarts
-# of its portable checkpoint on other rank counts (issue 6):
+# `mpirun -np N cgdem run` of a case (particles in vacuum or with air) against the
+# single-process run, and restarts of its portable checkpoint on other rank counts (issue 6):
 #   serial      cgdem run CASE                                  (no launcher)
 #   np2         mpirun -np 2 cgdem run CASE                     -> compare with serial
 #   half        mpirun -np 2 ... --set time.end=T_HALF, then
