@@ -11,6 +11,9 @@
 //             one sweep per side) on each rank's block; "bj-mg2" two sweeps per side;
 //   "bj-fft"  block Jacobi with the diagonally scaled FFT Poisson solve of
 //             fft_preconditioner.hpp on each block;
+//   "as-mg"   additive Schwarz: the pcg-mg V-cycle on each block grown by kGhost cells on
+//             its cut sides (residual and coefficients there from the neighbours), the
+//             grown parts of the result added back to their owners; "as-mg2" two sweeps;
 //   "pfmg"    hypre's structured multigrid PFMG (one V-cycle, Galerkin coarse operators,
 //             symmetric red-black Gauss-Seidel) on the whole distributed grid.
 //
@@ -38,8 +41,9 @@
 namespace cgdem::air_mpi {
 
 struct DistOptions {
-  // none, bj-mg, bj-mg2, bj-fft, pfmg. The default needs no hypre; on more than one rank
-  // pfmg is the one whose iterations do not grow (docs/scale_out.md, item 3).
+  // none, bj-mg, bj-mg2, bj-fft, as-mg, as-mg2, pfmg. The default needs no hypre; pfmg is
+  // the one whose iterations do not grow with the ranks, as-mg2 the fastest on 2 ranks of
+  // Case 1-3 (docs/scale_out.md, item 3 and "Air over ranks"; `cgdem run` chooses).
   std::string preconditioner = "bj-mg";
   double rel_tol = 1e-8;                 // ||r|| <= rel_tol ||b|| (global norms)
   int max_iter = 500;

@@ -58,7 +58,7 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::at_least(1)));
   f.stage_rel_tol = ps.number_or("stage_tolerance", f.stage_rel_tol, Range::positive());
   a.mpi_preconditioner =
-      ps.string_or("mpi_preconditioner", "auto", {"auto", "pfmg", "bj-mg", "bj-mg2", "bj-fft", "none"});
+      ps.string_or("mpi_preconditioner", "auto", {"auto", "pfmg", "bj-mg", "bj-mg2", "bj-fft", "as-mg", "as-mg2", "none"});
 
   Section bs = s.optional_section("boundary").value_or(Section(&cfg, s.key_path("boundary")));
   const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};

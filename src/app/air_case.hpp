@@ -19,9 +19,9 @@
 //                   krylov = "sundials" (SUNDIALS PCG; "fused": the same recurrence, fewer passes),
 //                   tolerance = 1e-8, max_iterations = 500,
 //                   stage_tolerance = 1e-4 (the Heun stage-1 solve, time_order = 2),
-//                   mpi_preconditioner = "auto" | "pfmg" | "bj-mg" | "bj-mg2" | "bj-fft" | "none"
-//                   (under mpirun only; "auto": bj-mg on up to 4 ranks, pfmg beyond when
-//                   built with hypre)
+//                   mpi_preconditioner = "auto" | "as-mg2" | "as-mg" | "bj-mg" | "bj-mg2" |
+//                   "bj-fft" | "pfmg" | "none" (under mpirun only; "auto": as-mg2 on up to
+//                   4 ranks, pfmg beyond when built with hypre; docs/scale_out.md)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
 //                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa)
 #pragma once
@@ -39,7 +39,7 @@ struct AirCase {
   CoupledParams coupled;
   coupling::ExchangeParams exchange;
   // Preconditioner of the distributed pressure solve under mpirun (air_mpi/dist_pressure.hpp):
-  // "auto" = "bj-mg" on up to 4 ranks, "pfmg" (hypre) beyond when the build has it.
+  // "auto" = "as-mg2" on up to 4 ranks, "pfmg" (hypre) beyond when the build has it.
   std::string mpi_preconditioner = "auto";
 };
 

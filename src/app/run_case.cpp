@@ -183,13 +183,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       const long before = dem->steps();
       CoupledStepStats st = coupled->step();
       particle_steps += (dem->steps() - before) * static_cast<long>(dem->particles().size());
-      ++counters.fluid_steps;
-      counters.pressure_iterations += st.fluid.pressure_iterations;
-      counters.max_divergence = std::max(counters.max_divergence, st.fluid.max_divergence);
-      counters.max_divergence_walls = std::max(counters.max_divergence_walls, st.fluid.max_divergence_walls);
-      if (!st.fluid.pressure_converged && counters.unconverged++ == 0)
-        fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
-                   "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
+      count_fluid_step(counters, st, dem->time());
       auto ts = out_timers.scope(t_observe);
       diag.observe(dem->time(), dem->particles(), st.dt_fluid);  // the next step: as long as this one
     } else {
@@ -244,11 +238,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   if (with_air) {
     fmt::print("{}", coupled->timers().table("per-phase time (coupling)"));
     fmt::print("{}", fluid->timers().table("per-phase time (air)"));
-    fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
-               "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",
-               counters.fluid_steps,
-               counters.fluid_steps ? double(counters.pressure_iterations) / counters.fluid_steps : 0.0,
-               counters.unconverged, counters.max_divergence, counters.max_divergence_walls);
+    print_fluid_counters(counters);
   }
   fmt::print("{}", out_timers.table("per-phase time (output)"));
   {

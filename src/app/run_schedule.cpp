@@ -123,4 +123,21 @@ void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::
   series.write(step, air.t, g.nx, g.ny, g.nz, g.origin, Vec3{g.dx, g.dx, g.dx}, s, v);
 }
 
+void count_fluid_step(RunCounters& c, const CoupledStepStats& st, double t, bool announce) {
+  ++c.fluid_steps;
+  c.pressure_iterations += st.fluid.pressure_iterations;
+  c.max_divergence = std::max(c.max_divergence, st.fluid.max_divergence);
+  c.max_divergence_walls = std::max(c.max_divergence_walls, st.fluid.max_divergence_walls);
+  if (!st.fluid.pressure_converged && c.unconverged++ == 0 && announce)
+    fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
+               "counted in the final report\n", t, st.fluid.pressure_residual);
+}
+
+void print_fluid_counters(const RunCounters& c) {
+  fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
+             "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",
+             c.fluid_steps, c.fluid_steps ? double(c.pressure_iterations) / c.fluid_steps : 0.0, c.unconverged,
+             c.max_divergence, c.max_divergence_walls);
+}
+
 }  // namespace cgdem::app

@@ -11,11 +11,13 @@
 #include <cstdio>
 #include <string>
 
+#include "app/checkpoint.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "core/timers.hpp"
 #include "fluid/fluid_state.hpp"
 #include "io/grid_snapshot_series.hpp"
+#include "solvers/coupled/coupled_solver.hpp"
 
 namespace cgdem::app {
 
@@ -71,5 +73,11 @@ void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec);
 // (alpha_cell may be empty: 0), the velocity averaged onto the cells.
 void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
                         const fluid::Field& alpha_cell);
+
+// Books a coupled step into the counters; the first unconverged pressure solve is announced
+// on stderr (when `announce`: rank 0 of a run over ranks).
+void count_fluid_step(RunCounters& c, const CoupledStepStats& st, double t, bool announce = true);
+// The counters' line of the final report.
+void print_fluid_counters(const RunCounters& c);
 
 }  // namespace cgdem::app

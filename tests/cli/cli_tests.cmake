@@ -82,26 +82,23 @@ if(CGDEM_MPI)
   # 1e-8 early (a contact force missing at a cut for one step is ~1e-5) and 2e-2 at the end.
   add_executable(compare_runs ${PROJECT_SOURCE_DIR}/tests/cli/compare_runs.cpp)
   target_link_libraries(compare_runs PRIVATE cgdem_io)
-  add_test(NAME cli.mpirun_matches_one_process_and_restarts_on_other_rank_counts
-           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DMPIEXEC=${MPIEXEC_EXECUTABLE}
-                   -DCOMPARE=$<TARGET_FILE:compare_runs> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/mpi_bed.toml
-                   -DT_HALF=15e-3 -DT_EARLY=15e-3 -DT_EARLY_RESTART=17e-3 -DEARLY_TOL=1e-8 -DEND_TOL=2e-2
-                   -DMOMENTUM_SCALE=4e-6 -DWORK=${PROJECT_BINARY_DIR}/cli_out/mpi_run
-                   -P ${PROJECT_SOURCE_DIR}/tests/cli/mpi_run.cmake)
-  set_tests_properties(cli.mpirun_matches_one_process_and_restarts_on_other_rank_counts PROPERTIES
-                       LABELS "cli;parallel" TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+  # One mpi_run.cmake test: case, the early comparison times (before / after the restarts).
+  function(cgdem_mpi_run_test name case t_early t_early_restart)
+    add_test(NAME ${name}
+             COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DMPIEXEC=${MPIEXEC_EXECUTABLE}
+                     -DCOMPARE=$<TARGET_FILE:compare_runs> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/${case}
+                     -DT_HALF=15e-3 -DT_EARLY=${t_early} -DT_EARLY_RESTART=${t_early_restart} -DEARLY_TOL=1e-8
+                     -DEND_TOL=2e-2 -DMOMENTUM_SCALE=4e-6 -DWORK=${PROJECT_BINARY_DIR}/cli_out/${name}
+                     -P ${PROJECT_SOURCE_DIR}/tests/cli/mpi_run.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli;parallel" TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+  endfunction()
+  cgdem_mpi_run_test(cli.mpirun_matches_one_process_and_restarts_on_other_rank_counts mpi_bed.toml 15e-3 17e-3)
   # The same with air (mpi_bed_air.toml: two-way coupling, IBM walls, open top; both pressure
   # solves to 1e-12). Measured: energy rows identical (to the 10 digits written) up to 7 ms on
   # 2 ranks and 1 ms after the restarts at 15 ms on 3 ranks and in one process; the air's
   # round-off (global dot products in another order) then grows ~1e2 per ms, to 5e-13 at 8 ms,
   # 1e-8 at 10 ms and 2e-4 .. 8e-4 of the energy scale, 3.4e-3 of MOMENTUM_SCALE at 30 ms.
   # Tolerances as for the bed in vacuum: 1e-8 early, 2e-2 at the end.
-  add_test(NAME cli.mpirun_with_air_matches_one_process_and_restarts_on_other_rank_counts
-           COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DMPIEXEC=${MPIEXEC_EXECUTABLE}
-                   -DCOMPARE=$<TARGET_FILE:compare_runs> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/mpi_bed_air.toml
-                   -DT_HALF=15e-3 -DT_EARLY=7e-3 -DT_EARLY_RESTART=16e-3 -DEARLY_TOL=1e-8 -DEND_TOL=2e-2
-                   -DMOMENTUM_SCALE=4e-6 -DWORK=${PROJECT_BINARY_DIR}/cli_out/mpi_run_air
-                   -P ${PROJECT_SOURCE_DIR}/tests/cli/mpi_run.cmake)
-  set_tests_properties(cli.mpirun_with_air_matches_one_process_and_restarts_on_other_rank_counts PROPERTIES
-                       LABELS "cli;parallel" TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+  cgdem_mpi_run_test(cli.mpirun_with_air_matches_one_process_and_restarts_on_other_rank_counts mpi_bed_air.toml
+                     7e-3 16e-3)
 endif()

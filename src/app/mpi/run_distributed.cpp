@@ -232,7 +232,10 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   for (int a = 0; a < 3; ++a) cuts[a] = {box.lo[a], box.hi[a]};
   air_mpi::GridBlocks::Starts starts;
   together(R, "decomposition", false, [&] {
-    if (R.size > 1) cuts = parallel::balanced_cuts(box, parallel::choose_dims(R.size, extent), where, range);
+    // With air, a cell of margin: moving a cut onto a cell face may narrow a block by dx/2.
+    if (R.size > 1)
+      cuts = parallel::balanced_cuts(box, parallel::choose_dims(R.size, extent), where,
+                                     with_air ? range + grid.dx : range);
     if (!with_air) return;
     starts = snap_to_cells(cuts, grid);
     if (R.size > 1 && !(dem->params().skin < grid.dx))
@@ -285,10 +288,11 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   std::unique_ptr<fluid::FluidSolver> fluid;
   std::unique_ptr<CoupledSolver> coupled;
   std::string preconditioner = air_case.mpi_preconditioner;
-  // "auto": block Jacobi multigrid on a few ranks (Case 1-3 settling on 2 ranks: 62 PCG
-  // iterations per fluid step but 6.8 s of solves against pfmg's 51 and 12.7 s), hypre's
-  // PFMG beyond (its iterations do not grow with the rank count; docs/scale_out.md).
-  if (preconditioner == "auto") preconditioner = R.size <= 4 || !air_mpi::have_pfmg() ? "bj-mg" : "pfmg";
+  // "auto": additive Schwarz multigrid on a few ranks (4 ms of Case 1-3 on 2 ranks: 30.9 PCG
+  // iterations and 5.4 s of solves per 20 fluid steps; bj-mg 62.0 and 6.8 s, pfmg 51.1 and
+  // 12.7 s), hypre's PFMG beyond (its iterations do not grow with the rank count;
+  // docs/scale_out.md).
+  if (preconditioner == "auto") preconditioner = R.size <= 4 || !air_mpi::have_pfmg() ? "as-mg2" : "pfmg";
   if (with_air) {
     together(R, "air set-up", false, [&] {
       blocks = std::make_unique<air_mpi::GridBlocks>(grid.n(), starts, R.rank);
@@ -498,13 +502,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     if (with_air) {  // its exchanges and reductions raise their errors on every rank together
       const CoupledStepStats st = coupled->step();
       particle_steps += st.substeps * n_present;
-      ++counters.fluid_steps;
-      counters.pressure_iterations += st.fluid.pressure_iterations;  // global figures, the same on every rank
-      counters.max_divergence = std::max(counters.max_divergence, st.fluid.max_divergence);
-      counters.max_divergence_walls = std::max(counters.max_divergence_walls, st.fluid.max_divergence_walls);
-      if (!st.fluid.pressure_converged && counters.unconverged++ == 0 && root)
-        fmt::print(stderr, "cgdem: warning: t = {:.6g} s: pressure solve not converged (residual {:.2e}); "
-                   "counted in the final report\n", dem->time(), st.fluid.pressure_residual);
+      count_fluid_step(counters, st, dem->time(), root);  // global figures, the same on every rank
       auto ts = out_timers.scope(t_observe);
       observe(st.dt_fluid);  // the next step: as long as this one
     } else {
@@ -576,11 +574,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     if (with_air) {
       fmt::print("{}", coupled->timers().table("per-phase time (coupling, rank 0)"));
       fmt::print("{}", fluid->timers().table("per-phase time (air, rank 0)"));
-      fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
-                 "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",
-                 counters.fluid_steps,
-                 counters.fluid_steps ? double(counters.pressure_iterations) / counters.fluid_steps : 0.0,
-                 counters.unconverged, counters.max_divergence, counters.max_divergence_walls);
+      print_fluid_counters(counters);
       fmt::print("air cells per rank: {} .. {}\n", cells_min, cells_max);
     }
     fmt::print("{}", out_timers.table("per-phase time (output, rank 0)"));

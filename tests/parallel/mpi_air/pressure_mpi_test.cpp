@@ -77,7 +77,7 @@ Problem make_problem(const char* name, bool open_top, bool pocket) {
 
 
 std::vector<std::string> preconditioners() {
-  std::vector<std::string> p{"none", "bj-mg", "bj-fft"};
+  std::vector<std::string> p{"none", "bj-mg", "bj-fft", "as-mg", "as-mg2"};
   if (have_pfmg()) p.push_back("pfmg");
   return p;
 }
