@@ -97,6 +97,24 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(scaling cgdem_scaling)
   cgdem_tests(parallel cgdem_parallel)
   if(CGDEM_MPI)
+    # A multi-rank test executable (its own main: MPI_Init around GoogleTest) from the .cpp
+    # files of a folder, registered as ctest NAME_np<N> for each rank count, run under
+    # mpirun oversubscribed (correctness on a 2-core machine, not speed). The launcher
+    # flags are OpenMPI's (Debian's MPI, scripts/install-deps.sh); CI runs as root.
+    function(cgdem_mpi_tests exe name dir)
+      cmake_parse_arguments(T "" "" "LIBS;RANKS" ${ARGN})
+      file(GLOB srcs CONFIGURE_DEPENDS ${dir}/*.cpp)
+      add_executable(${exe} ${srcs})
+      target_link_libraries(${exe} PRIVATE ${T_LIBS} GTest::gtest)
+      target_compile_options(${exe} PRIVATE -Wall -Wextra)
+      foreach(np ${T_RANKS})
+        add_test(NAME ${name}_np${np}
+                 COMMAND ${MPIEXEC_EXECUTABLE} --allow-run-as-root --oversubscribe ${MPIEXEC_NUMPROC_FLAG} ${np}
+                         ${MPIEXEC_PREFLAGS} $<TARGET_FILE:${exe}> ${MPIEXEC_POSTFLAGS})
+        set_tests_properties(${name}_np${np} PROPERTIES LABELS parallel TIMEOUT 120
+                             ENVIRONMENT "OMP_NUM_THREADS=1;GTEST_COLOR=no")
+      endforeach()
+    endfunction()
     include(${PROJECT_SOURCE_DIR}/tests/parallel/mpi/mpi_tests.cmake)
     include(${PROJECT_SOURCE_DIR}/tests/parallel/mpi_air/mpi_air_tests.cmake)
   endif()

@@ -36,11 +36,12 @@
 
 #include "air_mpi/grid_blocks.hpp"
 #include "fluid/boundary.hpp"
+#include "fluid/field_sync.hpp"
 
 namespace cgdem::air_mpi {
 
-// Cell-centred fields have no stagger axis.
-inline constexpr int kCellCentred = -1;
+// Cell-centred fields have no stagger axis (the value of fluid/field_sync.hpp).
+inline constexpr int kCellCentred = fluid::kCells;
 
 class Halo {
  public:
