@@ -10,6 +10,10 @@ struct DemBenchArgs {
   std::string bed;       // CSV x,y,z,d in metres
   long steps = 2000;
   int threads = 1;
+  // Run the stripped reference of the same law (bench/dem/stripped_dem.hpp) instead of
+  // the engine: one thread, a bound on what the engine can reach on this machine.
+  bool stripped = false;
+  bool accounts = false;  // the stripped reference keeps the energy accounts too
 };
 int run_dem_bench(const DemBenchArgs& args);
 

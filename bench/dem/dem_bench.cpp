@@ -8,11 +8,38 @@
 #include <ctime>
 
 #include "bench/bench.hpp"
+#include "bench/dem/stripped_dem.hpp"
 #include "core/timers.hpp"
 #include "io/particle_csv.hpp"
 #include "solvers/dem/dem_solver.hpp"
 
 namespace cgdem::bench {
+
+namespace {
+
+// The stripped reference (stripped_dem.hpp) from the engine's state after its first step.
+int run_stripped(const DemSolver& dem, const std::vector<Plane>& planes, const DemBenchArgs& args) {
+  StrippedDem ref(dem, planes, args.accounts);
+  Stopwatch clock;
+  for (long k = 0; k < args.steps; ++k) ref.step();
+  const double wall = clock.seconds();
+  const double rate = static_cast<double>(ref.size()) * args.steps / wall;
+  fmt::print("bench dem --stripped{}: {} particles, {} steps, 1 thread, {:.3f} s\n", args.accounts ? " --accounts" : "",
+             ref.size(), args.steps, wall);
+  fmt::print("the same contact law without {}thread-count independence or list rebuilds, fused multiply-adds "
+             "allowed: a bound for the engine, not the engine\n",
+             args.accounts ? "" : "energy accounts, ");
+  // The engine's `state:` line after the same steps agrees to round-off.
+  if (args.accounts)
+    fmt::print("state: E_kin {:.17g} E_pot {:.17g} dissipated {:.17g} + {:.17g} J\n", ref.kinetic_energy(),
+               ref.potential_energy(), ref.dissipated_damping(), ref.dissipated_friction());
+  else
+    fmt::print("state: E_kin {:.17g} E_pot {:.17g} J\n", ref.kinetic_energy(), ref.potential_energy());
+  fmt::print("particle-steps/s: {:.4e}\n", rate);
+  return 0;
+}
+
+}  // namespace
 
 int run_dem_bench(const DemBenchArgs& args) {
   omp_set_num_threads(args.threads);
@@ -21,13 +48,15 @@ int run_dem_bench(const DemBenchArgs& args) {
   for (double di : bed.d)
     if (di != d) throw Error("bench dem: the bed must be monodisperse");
 
+  // The box's walls, as planes (the stripped reference takes them as they are) and as the
+  // engine's scene parts, in the same order.
+  const std::vector<Plane> planes{{{0, 0, 0}, {1, 0, 0}},     {{0.010, 0, 0}, {-1, 0, 0}}, {{0, 0, 0}, {0, 1, 0}},
+                                  {{0, 0.006, 0}, {0, -1, 0}}, {{0, 0, 0}, {0, 0, 1}}};
+  const char* names[] = {"x0", "x1", "y0", "y1", "floor"};
   geometry::Scene scene;
   int box = scene.add_body("box", geometry::Motion{});
-  scene.add_part(box, "x0", geometry::make_half_space({0, 0, 0}, {1, 0, 0}));
-  scene.add_part(box, "x1", geometry::make_half_space({0.010, 0, 0}, {-1, 0, 0}));
-  scene.add_part(box, "y0", geometry::make_half_space({0, 0, 0}, {0, 1, 0}));
-  scene.add_part(box, "y1", geometry::make_half_space({0, 0.006, 0}, {0, -1, 0}));
-  scene.add_part(box, "floor", geometry::make_half_space({0, 0, 0}, {0, 0, 1}));
+  for (size_t k = 0; k < planes.size(); ++k)
+    scene.add_part(box, names[k], geometry::make_half_space(planes[k].point, planes[k].normal));
 
   Species s{"bed", d, 1.0, 1500.0};
   MaterialParams m{50.0, 0.9, 0.3, 0.9, 0.3};
@@ -40,6 +69,7 @@ int run_dem_bench(const DemBenchArgs& args) {
   for (size_t i = 0; i < bed.size(); ++i) dem.particles().add(static_cast<int64_t>(i), 0, s, bed.x[i]);
 
   dem.step();  // first build and forces, not timed
+  if (args.stripped) return run_stripped(dem, planes, args);
   dem.timers().reset();
   Stopwatch clock;
   const std::clock_t cpu0 = std::clock();

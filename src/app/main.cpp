@@ -1,6 +1,6 @@
 // The cgdem command line.
 //   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N] [--restart CHECKPOINT]
-//   cgdem bench dem --bed BED.csv [--steps N] [--threads T]
+//   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
 //   cgdem spectrum | converge | scale ...   (the analysis commands, scaling/*_command.hpp)
@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
   bdem->add_option("--bed", dem_args.bed, "bed CSV (x,y,z,d)")->required()->check(CLI::ExistingFile);
   bdem->add_option("--steps", dem_args.steps, "time steps")->check(CLI::PositiveNumber);
   bdem->add_option("--threads", dem_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bdem->add_flag("--stripped", dem_args.stripped,
+                 "run the stripped reference of the same law instead of the engine (one thread; a bound)");
+  bdem->add_flag("--accounts", dem_args.accounts, "with --stripped: keep the energy accounts as the engine does")
+      ->needs(bdem->get_option("--stripped"));
   cgdem::bench::PressureBenchArgs p_args;
   std::string grid = "140x70x50";
   bool no_cholmod = false;
