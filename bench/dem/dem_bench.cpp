@@ -42,6 +42,8 @@ int run_stripped(const DemSolver& dem, const std::vector<Plane>& planes, const D
 }  // namespace
 
 int run_dem_bench(const DemBenchArgs& args) {
+  if (args.stripped && args.threads != 1)
+    throw Error("bench dem: the stripped reference runs on one thread (drop --threads with --stripped)");
   omp_set_num_threads(args.threads);
   io::ParticleTable bed = io::read_particles_csv(args.bed);
   const double d = bed.d.at(0);

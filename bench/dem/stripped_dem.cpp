@@ -1,7 +1,7 @@
-// The stripped reference step (stripped_dem.hpp). Built with -fno-math-errno and a
-// 512-bit vector preference (bench/CMakeLists.txt) and fused multiply-adds allowed, so
-// that GCC vectorizes the pair and wall loops as far as it can: the point is the fastest
-// plain C++ form of the law, not reproducible bits.
+// The stripped reference step (stripped_dem.hpp). Built with -fno-math-errno, a 512-bit
+// vector preference and Intel tuning (hardware gathers; bench/CMakeLists.txt), with fused
+// multiply-adds allowed, so that GCC vectorizes the pair and wall loops as far as it can:
+// the point is the fastest plain C++ form of the law, not reproducible bits.
 #pragma GCC optimize("fp-contract=fast")
 #include "bench/dem/stripped_dem.hpp"
 
@@ -269,10 +269,11 @@ void StrippedDem::forces() {
     const int i1 = std::min(n_, i0 + kBlock), e0 = off[i0], ne = off[i1] - e0;
     if (share_[0].size() < static_cast<size_t>(ne))
       for (auto& v : share_) v.resize(ne);
-    const HistArrays h{{hist.xi[0] + e0, hist.xi[1] + e0, hist.xi[2] + e0},
-                       {hist.ft[0] + e0, hist.ft[1] + e0, hist.ft[2] + e0},
-                       hist.vn + e0,
-                       hist.ftvt + e0};
+    // The block's part of the histories (without the accounts only xi is allocated).
+    HistArrays h{{hist.xi[0] + e0, hist.xi[1] + e0, hist.xi[2] + e0}, {nullptr, nullptr, nullptr}, nullptr, nullptr};
+    if (accounts_)
+      h.ft[0] = hist.ft[0] + e0, h.ft[1] = hist.ft[1] + e0, h.ft[2] = hist.ft[2] + e0, h.vn = hist.vn + e0,
+      h.ftvt = hist.ftvt + e0;
     const Terms out{share_[0].data(), share_[1].data(), share_[2].data(), share_[3].data(),
                      share_[4].data(), share_[5].data(), share_[6].data(), share_[7].data()};
     if (accounts_)
