@@ -280,25 +280,25 @@ void StrippedDem::forces() {
       pair_loop_accounts(s, owner_.data() + e0, partner_.data() + e0, h, out, ne, r, pair_law);
     else
       pair_loop(s, owner_.data() + e0, partner_.data() + e0, h, out, ne, r, pair_law);
-    const double *__restrict cx = out.fx - e0, *__restrict cy = out.fy - e0, *__restrict cz = out.fz - e0;
-    const double *__restrict mx = out.tx - e0, *__restrict my = out.ty - e0, *__restrict mz = out.tz - e0;
+    const double *__restrict cx = out.fx, *__restrict cy = out.fy, *__restrict cz = out.fz;  // index e - e0
+    const double *__restrict mx = out.tx, *__restrict my = out.ty, *__restrict mz = out.tz;
     for (int i = i0; i < i1; ++i) {
       double sfx = fx[i], sfy = fy[i], sfz = fz[i], stx = tx[i], sty = ty[i], stz = tz[i];
       for (int e = off[i]; e < off[i + 1]; ++e) {
-        const int j = part[e];
-        sfx += cx[e], sfy += cy[e], sfz += cz[e];
-        fx[j] -= cx[e], fy[j] -= cy[e], fz[j] -= cz[e];
-        const double ax = r * mx[e], ay = r * my[e], az = r * mz[e];
+        const int j = part[e], k = e - e0;
+        sfx += cx[k], sfy += cy[k], sfz += cz[k];
+        fx[j] -= cx[k], fy[j] -= cy[k], fz[j] -= cz[k];
+        const double ax = r * mx[k], ay = r * my[k], az = r * mz[k];
         stx -= ax, sty -= ay, stz -= az;
         tx[j] -= ax, ty[j] -= ay, tz[j] -= az;
       }
       fx[i] = sfx, fy[i] = sfy, fz[i] = sfz, tx[i] = stx, ty[i] = sty, tz[i] = stz;
     }
     if (accounts_) {
-      const double *__restrict dd = out.damp - e0, *__restrict df = out.fric - e0;
+      const double *__restrict dd = out.damp, *__restrict df = out.fric;
       for (int i = i0; i < i1; ++i) {
         double sd = 0, sf = 0;
-        for (int e = off[i]; e < off[i + 1]; ++e) sd += dd[e], sf += df[e];
+        for (int e = off[i]; e < off[i + 1]; ++e) sd += dd[e - e0], sf += df[e - e0];
         e_damp[i] += sd, e_fric[i] += sf;
       }
     }
