@@ -97,9 +97,7 @@ class AdditiveSchwarz : public DistPreconditioner {
       std::array<int, 3> fe = e;
       fe[d] += 1;
       fluid::Field f(fe);
-      for (int k = 0; k < fe[2]; ++k)
-        for (int j = 0; j < fe[1]; ++j)
-          for (int i = 0; i < fe[0]; ++i) f(i, j, k) = (*a[d])[i + static_cast<long>(fe[0]) * (j + static_cast<long>(fe[1]) * k)];
+      to_field(a[d]->data(), fe, {0, 0, 0}, f);
       halo_.exchange(f, d);
       std::array<int, 3> ge = n_;
       ge[d] += 1;
@@ -120,29 +118,30 @@ class AdditiveSchwarz : public DistPreconditioner {
   }
   void apply(const double* r, double* z) override {
     const auto e = blocks_.local_cells();
-    put(r, cells_, e);
+    to_field(r, e, {0, 0, 0}, cells_);
     halo_.exchange(cells_, kCellCentred);
-    for (int k = 0; k < n_[2]; ++k)
-      for (int j = 0; j < n_[1]; ++j)
-        for (int i = 0; i < n_[0]; ++i)
-          rg_[i + static_cast<long>(n_[0]) * (j + static_cast<long>(n_[1]) * k)] = cells_(i - lo_[0], j - lo_[1], k - lo_[2]);
+    from_field(cells_, n_, lo_, rg_.data());
     mg_->apply(rg_.data(), zg_.data());
     cells_.fill(0.0);
-    for (int k = 0; k < n_[2]; ++k)
-      for (int j = 0; j < n_[1]; ++j)
-        for (int i = 0; i < n_[0]; ++i)
-          cells_(i - lo_[0], j - lo_[1], k - lo_[2]) = zg_[i + static_cast<long>(n_[0]) * (j + static_cast<long>(n_[1]) * k)];
+    to_field(zg_.data(), n_, lo_, cells_);
     halo_.reverse_add(cells_, kCellCentred);
-    for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i) z[i + static_cast<long>(e[0]) * (j + static_cast<long>(e[1]) * k)] = cells_(i, j, k);
+    from_field(cells_, e, {0, 0, 0}, z);
   }
 
  private:
-  static void put(const double* v, fluid::Field& f, const std::array<int, 3>& e) {
-    for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i) f(i, j, k) = v[i + static_cast<long>(e[0]) * (j + static_cast<long>(e[1]) * k)];
+  // A flat array over n cells (x fastest) to and from the field's cells starting at -lo
+  // (which reach into its ghost layers when lo > 0).
+  static void to_field(const double* v, const std::array<int, 3>& n, const std::array<int, 3>& lo, fluid::Field& f) {
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+          f(i - lo[0], j - lo[1], k - lo[2]) = v[i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k)];
+  }
+  static void from_field(const fluid::Field& f, const std::array<int, 3>& n, const std::array<int, 3>& lo, double* v) {
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+          v[i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k)] = f(i - lo[0], j - lo[1], k - lo[2]);
   }
   Halo halo_;
   GridBlocks blocks_;
