@@ -1,5 +1,7 @@
 #include "app/die_diagnostics.hpp"
 
+#include "geometry/motion.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,6 +26,9 @@ DiagnosticsSpec read_diagnostics(Config& cfg) {
   d.rate_window = s.number_or("rate_window", d.rate_window, Range::positive());
   d.impact_band = s.number_or("impact_band", 0.0, Range::non_negative());
   d.impact_window = s.number_or("impact_window", d.impact_window, Range::positive());
+  d.eps_bubble = s.number_or("eps_bubble", d.eps_bubble, Range::open_closed(0, 1));
+  d.surface_interval = s.number_or("surface_interval", d.surface_interval, Range::positive());
+  d.surface_bins = static_cast<int>(s.integer_or("surface_bins", d.surface_bins, Range::closed(1, 1000)));
   auto cells = s.sections("pressure_cell");
   for (const Section& c : cells) {
     PressureCell pc{c.string("name"), c.vec3("min"), c.vec3("max")};
@@ -56,6 +61,91 @@ DieDiagnostics::DieDiagnostics(DiagnosticsSpec spec, std::vector<double> species
     : spec_(std::move(spec)), mass_(std::move(species_mass)), diameter_(std::move(species_diameter)) {
   band_ = spec_.impact_band;
   if (band_ <= 0) band_ = 0.25 * *std::max_element(diameter_.begin(), diameter_.end());
+}
+
+DiagnosticsRow::DiagnosticsRow() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  q_cavity = q_walls = q_open = nan;
+  bubbles = v_bubbles = v_bubble_max = z_bubble = z_bubble_top = v_bubbles_shoe = v_sealed = nan;
+}
+
+double DieDiagnostics::shoe_offset(double t) const {
+  const auto& p = spec_.die;
+  const geometry::Motion m({p.shoe_start, p.shoe_start + p.shoe_ramp}, {Vec3{}, Vec3{p.shoe_speed, 0, 0}});
+  return m.displacement(t).x;
+}
+
+double DieDiagnostics::mass_in_shoe(const Particles& p, double t) const {
+  const auto& d = spec_.die;
+  const Vec3 lo = d.cavity_lo(), hi = d.cavity_hi();
+  const double dx = shoe_offset(t);
+  double m = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.x[i];
+    if (x.z > d.table_top && x.x >= lo.x + dx && x.x <= hi.x + dx && x.y >= lo.y && x.y <= hi.y)
+      m += mass_[p.species[i]];
+  }
+  return m;
+}
+
+PathFlux DieDiagnostics::path_fluxes(const fluid::FluidState& air, double t) const {
+  PathFlux q;
+  const auto& d = spec_.die;
+  const auto& g = air.grid;
+  // The z-face plane just below the table top, in this grid's own indices.
+  const double z_plane = g.dx * std::floor((d.table_top - g.origin.z) / g.dx * (1 + 1e-12)) + g.origin.z;
+  const int k = static_cast<int>(std::lround((z_plane - g.origin.z) / g.dx));
+  if (k < 0 || k >= g.nz) return q;  // not in this block (k = nz is the upper block's face)
+  const double off = shoe_offset(t), w = d.shoe_wall;
+  const Vec3 c0 = d.cavity_lo() + Vec3{off, 0, 0}, c1 = d.cavity_hi() + Vec3{off, 0, 0};
+  const double area = g.dx * g.dx;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const Vec3 f = g.face_centre(2, i, j, k);
+      if (f.x < d.mouth_x0 || f.x > d.mouth_x0 + d.mouth_length || f.y < d.mouth_y0 ||
+          f.y > d.mouth_y0 + d.mouth_width)
+        continue;
+      const double flux = 0.5 * (air.eps(i, j, k) + air.eps(i, j, k - 1)) * air.w(i, j, k) * area;
+      const bool cavity = f.x >= c0.x && f.x <= c1.x && f.y >= c0.y && f.y <= c1.y;
+      const bool shoe = f.x >= c0.x - w && f.x <= c1.x + w && f.y >= c0.y - w && f.y <= c1.y + w;
+      (cavity ? q.cavity : shoe ? q.walls : q.open) += flux;
+    }
+  return q;
+}
+
+std::string DieDiagnostics::surface_header() const { return "t_s,bin,x_cavity_m,x_m,solid_height_m,surface_m,parcels"; }
+
+std::string DieDiagnostics::surface_rows(double t, const Particles& p) const {
+  const auto& d = spec_.die;
+  const int nb = spec_.surface_bins;
+  const Vec3 lo = d.cavity_lo(), hi = d.cavity_hi();
+  const double off = shoe_offset(t), len = hi.x - lo.x, bin = len / nb;
+  std::vector<double> solid(nb, 0.0);
+  std::vector<std::vector<double>> tops(nb);
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.x[i];
+    const double xc = x.x - (lo.x + off);
+    if (x.z <= d.table_top || xc < 0 || xc > len || x.y < lo.y || x.y > hi.y) continue;
+    const int b = std::min(nb - 1, static_cast<int>(xc / bin));
+    const double r = p.radius[i];
+    solid[b] += 4.0 / 3.0 * M_PI * r * r * r;
+    tops[b].push_back(x.z + r);
+  }
+  std::string s;
+  const double area = bin * (hi.y - lo.y);
+  for (int b = 0; b < nb; ++b) {
+    auto& v = tops[b];
+    double surface = std::numeric_limits<double>::quiet_NaN();
+    if (!v.empty()) {
+      // The lowest of the highest 2 % (at least one parcel).
+      const size_t top = std::max<size_t>(1, static_cast<size_t>(std::ceil(0.02 * v.size())));
+      std::nth_element(v.begin(), v.end() - top, v.end());
+      surface = *(v.end() - top) - d.table_top;
+    }
+    s += fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", t, b, (b + 0.5) * bin, lo.x + off + (b + 0.5) * bin,
+                     solid[b] / area, surface, v.size());
+  }
+  return s;
 }
 
 bool DieDiagnostics::in_mouth(const Vec3& x) const {
@@ -108,10 +198,25 @@ std::optional<std::pair<double, double>> DieDiagnostics::front_impact() const {
 }
 
 DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::FluidState* air,
-                                   const fluid::FluidParams* fp) const {
+                                   const fluid::FluidParams* fp, const fluid::Field* alpha_cell) const {
   DiagnosticsRow r;
   r.t = t;
   r.mass_in_die = mass_in_die(p);
+  r.mass_in_shoe = mass_in_shoe(p, t);
+  if (air) {
+    const PathFlux q = path_fluxes(*air, t);
+    r.q_cavity = q.cavity, r.q_walls = q.walls, r.q_open = q.open;
+  }
+  if (air && alpha_cell && !alpha_cell->empty() && fp) {  // empty before the first fluid step
+    const fluid::BubbleCensus b = fluid::find_bubbles(air->grid, air->eps, *alpha_cell, fp->bc, spec_.eps_bubble, 1,
+                                                           spec_.die.table_top);
+    r.bubbles = static_cast<double>(b.bubbles.size());
+    r.v_bubbles = b.total_volume();
+    r.v_sealed = b.sealed_volume;
+    r.v_bubbles_shoe = b.total_volume_above();
+    r.v_bubble_max = b.largest() ? b.largest()->volume : 0.0;
+    if (b.largest()) r.z_bubble = b.largest()->centroid.z, r.z_bubble_top = b.largest()->z_top;
+  }
   r.impacts = static_cast<long>(impacts_.size());
   // Backward difference over the window, from the recorded history.
   r.transfer_rate = 0;
@@ -179,12 +284,15 @@ void DieDiagnostics::load(io::ArchiveReader& r) {
 std::string DieDiagnostics::csv_header() const {
   std::string h = "t,mass_in_die,transfer_rate,impacts";
   for (const auto& c : spec_.cells) h += ",p_" + c.name;
-  return h;
+  return h + ",mass_in_shoe,Q_cavity,Q_shoe_walls,Q_open_mouth,bubbles,V_bubbles,V_bubble_max,z_bubble,z_bubble_top,V_bubbles_shoe,V_sealed";
 }
 
 std::string DieDiagnostics::csv_line(const DiagnosticsRow& r) const {
   std::string s = fmt::format("{:.9g},{:.9g},{:.9g},{}", r.t, r.mass_in_die, r.transfer_rate, r.impacts);
   for (double p : r.pressure) s += fmt::format(",{:.9g}", p);
+  for (double v : {r.mass_in_shoe, r.q_cavity, r.q_walls, r.q_open, r.bubbles, r.v_bubbles, r.v_bubble_max, r.z_bubble,
+                   r.z_bubble_top, r.v_bubbles_shoe, r.v_sealed})
+    s += fmt::format(",{:.9g}", v);
   return s;
 }
 

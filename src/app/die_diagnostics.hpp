@@ -21,6 +21,24 @@
 //   pressure cells    gauge pressure averaged over the air cells whose centres lie in each
 //                     configured box (A, B, C), gauge = p - p_open - rho_f g.(x - x_open)
 //                     (the still-air hydrostatic pressure removed) [Pa]
+//   mass in the shoe  solid mass of the parcels whose centre lies inside the cavity's
+//                     footprint (moving with the shoe) above the table top [kg]
+//   air paths         the air leaving the die, as the volume flux up through the z-face
+//                     plane just below the table top, over the die mouth, split by what lies
+//                     above each face at that moment: the cavity (air that must cross the
+//                     shoe's powder), the shoe's walls (air that can only leave through the
+//                     shoe-table gap) and nothing (the mouth open to the room), each
+//                     sum E_face w dx^2 [m^3/s] (positive: out of the die)
+//   bubbles           air enclosed by powder (fluid/bubbles.hpp, eps >= diagnostics.eps_bubble):
+//                     their number, total and largest volume, the largest one's centroid
+//                     height and top, the bubbles' volume above the table top (risen into
+//                     the shoe) [m^3, m]; and the air sealed by walls alone [m^3]
+//   shoe surface      shoe_surface.csv, every diagnostics.surface_interval: over bins of the
+//                     cavity's length (diagnostics.surface_bins, in the shoe's frame), the
+//                     solid height (solid volume of the bin's parcels / bin area: the height
+//                     the bed would have at packing 1) and the surface (the top z + r of the
+//                     highest 2 % of the bin's parcels) [m]; a splash lifts the surface
+//                     while the solid height stays
 #pragma once
 #include <map>
 #include <optional>
@@ -28,6 +46,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "fluid/bubbles.hpp"
 #include "fluid/fluid_state.hpp"
 #include "geometry/die_filling.hpp"
 #include "io/archive.hpp"
@@ -47,11 +66,15 @@ struct DiagnosticsSpec {
   double rate_window = 5e-3;    // [s]
   double impact_band = 0;       // [m] above the floor (0: a quarter of the largest parcel diameter)
   double impact_window = 5e-3;  // [s]
+  double eps_bubble = 0.9;      // void fraction from which a cell counts as air (bubbles)
+  double surface_interval = 5e-3;  // [s] between profiles of shoe_surface.csv
+  int surface_bins = 10;        // bins over the cavity length
   std::vector<PressureCell> cells;
 };
 
 // [diagnostics] (enabled by default when [walls.die_filling] exists):
-//   interval, rate_window, impact_band, impact_window, [[diagnostics.pressure_cell]] name/min/max
+//   interval, rate_window, impact_band, impact_window, eps_bubble, surface_interval, surface_bins,
+//   [[diagnostics.pressure_cell]] name/min/max
 // (default cells A, B, C: see die_diagnostics.cpp).
 DiagnosticsSpec read_diagnostics(Config& cfg);
 
@@ -59,6 +82,17 @@ struct DiagnosticsRow {
   double t = 0, mass_in_die = 0, transfer_rate = 0;
   std::vector<double> pressure;  // per cell, NaN without air
   long impacts = 0;              // parcels that have reached the floor so far
+  double mass_in_shoe = 0;       // [kg]
+  // Air paths out of the die [m^3/s] and bubbles (NaN without air; bubbles NaN when the
+  // wall fractions are not given, as over MPI ranks).
+  double q_cavity, q_walls, q_open;
+  double bubbles, v_bubbles, v_bubble_max, z_bubble, z_bubble_top, v_bubbles_shoe, v_sealed;
+  DiagnosticsRow();
+};
+
+// Volume fluxes of air out of the die through the mouth plane (see above) [m^3/s].
+struct PathFlux {
+  double cavity = 0, walls = 0, open = 0;
 };
 
 class DieDiagnostics {
@@ -69,7 +103,18 @@ class DieDiagnostics {
   // the time to the next call [s] (0: record only the parcels already inside the band).
   void observe(double t, const Particles& p, double horizon = 0);
   // A row for diagnostics.csv (air may be null).
-  DiagnosticsRow row(double t, const Particles& p, const fluid::FluidState* air, const fluid::FluidParams* fp) const;
+  // alpha_cell (the cells' wall fractions) enables the bubble census.
+  DiagnosticsRow row(double t, const Particles& p, const fluid::FluidState* air, const fluid::FluidParams* fp,
+                     const fluid::Field* alpha_cell = nullptr) const;
+  // The air paths' fluxes over the z-faces of `air` (the whole grid or one block: the sums
+  // of the blocks add up, each face counted by the block that owns it, k < nz).
+  PathFlux path_fluxes(const fluid::FluidState& air, double t) const;
+  // shoe_surface.csv: its header and the rows of one profile at time t.
+  std::string surface_header() const;
+  std::string surface_rows(double t, const Particles& p) const;
+  double surface_interval() const { return spec_.surface_interval; }
+  // The shoe's displacement along x at time t [m].
+  double shoe_offset(double t) const;
   // The pressure cells' gauge pressure summed over the cells of `air` (the whole grid, or one
   // block of `whole`) whose centres lie in each, and their count: the row's pressures are
   // the sums over all blocks divided by the counts (mean_pressures; NaN for a cell box
@@ -101,6 +146,7 @@ class DieDiagnostics {
   double mass_in_die(const Particles& p) const;
   double floor_z(double x) const;
   bool in_mouth(const Vec3& x) const;
+  double mass_in_shoe(const Particles& p, double t) const;
 
   DiagnosticsSpec spec_;
   std::vector<double> mass_, diameter_;

@@ -110,6 +110,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   };
   std::FILE* energy = open_csv("energy.csv", energy_csv_header());
   std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
+  std::FILE* surface_csv = diag_spec.enabled ? open_csv("shoe_surface.csv", diag.surface_header()) : nullptr;
   const std::string last_good = (out / "last_good.h5").string();
   const std::string checkpoint = (out / "checkpoint.bin").string();
   // Parcels are never lost silently: the count (present + removed) must stay what it was,
@@ -143,8 +144,14 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     if (!diag_csv) return;
     std::fprintf(diag_csv, "%s\n",
                  diag.csv_line(diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr,
-                                        with_air ? &air_case.fluid : nullptr)).c_str());
+                                        with_air ? &air_case.fluid : nullptr,
+                                        with_air ? &fluid->ibm().alpha_cell : nullptr)).c_str());
     std::fflush(diag_csv);
+  };
+  auto write_surface = [&]() {
+    if (!surface_csv) return;
+    std::fputs(diag.surface_rows(dem->time(), dem->particles()).c_str(), surface_csv);
+    std::fflush(surface_csv);
   };
   auto check_health = [&]() {
     check_particles(*dem, c.output.max_speed);
@@ -166,6 +173,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     diag.observe(dem->time(), dem->particles());
     write_energy();
     write_diagnostics();
+    write_surface();
     write_snapshot();
     write_checkpoint_now();
   }
@@ -205,6 +213,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       auto ts = out_timers.scope(t_series);
       write_diagnostics();
     }
+    if (due.surface) {
+      auto ts = out_timers.scope(t_series);
+      write_surface();
+    }
     if (due.snapshot) {
       auto ts = out_timers.scope(t_snap);
       write_snapshot();
@@ -227,6 +239,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   progress.finish();
   std::fclose(energy);
   if (diag_csv) std::fclose(diag_csv);
+  if (surface_csv) std::fclose(surface_csv);
 
   if (diag_spec.enabled) write_impacts(c.output.dir, diag);
 
@@ -255,7 +268,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   fmt::print("state digest {:016x} at t = {:.9g} s\n", state_digest(*dem, with_air ? &air : nullptr), dem->time());
   fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
              "checkpoint.bin, config.resolved.toml\n",
-             c.output.dir, diag_spec.enabled ? ", diagnostics.csv, impacts.csv" : "",
+             c.output.dir, diag_spec.enabled ? ", diagnostics.csv, shoe_surface.csv, impacts.csv" : "",
              with_air ? ", air.xdmf (+ air_*.h5)" : "");
   return 0;
 }

@@ -6,7 +6,9 @@
 //                 the front reaches the floor), fill_mass_kg (solid mass in the die at the
 //                 end), transfer_rate_peak_kg_s and transfer_rate_peak_time_s, and for each
 //                 pressure cell X: p_X_peak_Pa and p_X_peak_time_s (largest gauge pressure)
-//                 and p_X_mean_Pa. Peaks are taken over t >= 0 (the shoe's motion; the
+//                 and p_X_mean_Pa; with the shoe and air-path columns: shoe_mass_end_kg,
+//                 bubble_volume_peak_m3 / _time_s (largest bubble), bubble_in_shoe_peak_m3 / _time_s
+//                 (bubble air above the table top). Peaks are taken over t >= 0 (the shoe's motion; the
 //                 settling before it is excluded) and over the whole run if it starts later.
 #pragma once
 #include <optional>

@@ -21,12 +21,14 @@ OutputSchedule::OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, do
       snapshot_(c.output.snapshot_interval),
       checkpoint_(c.output.checkpoint_interval),
       diag_(diag.interval),
+      surface_(diag.surface_interval),
       with_diag_(diag.enabled),
       settled_pending_(t_now < -1e-9 * c.dem.dt) {
   next_energy_ = next_after(energy_, t_now);
   next_snap_ = next_after(snapshot_, t_now);
   next_checkpoint_ = next_after(checkpoint_, t_now);
   next_diag_ = next_after(diag_, t_now);
+  next_surface_ = next_after(surface_, t_now);
 }
 
 double OutputSchedule::next_after(double interval, double t) const {
@@ -39,6 +41,7 @@ OutputSchedule::Due OutputSchedule::after_step(double t) {
   d.snapshot = t >= next_snap_ - tiny_ || d.last;
   d.energy = t >= next_energy_ - tiny_ || d.snapshot;
   d.diagnostics = with_diag_ && (t >= next_diag_ - tiny_ || d.last);
+  d.surface = with_diag_ && (t >= next_surface_ - tiny_ || d.last);
   d.checkpoint = t >= next_checkpoint_ - tiny_ || d.last;
   d.settled = settled_pending_ && t >= -tiny_;
   auto advance = [&](bool due, double& next, double interval) {
@@ -47,6 +50,7 @@ OutputSchedule::Due OutputSchedule::after_step(double t) {
   };
   advance(d.energy, next_energy_, energy_);
   advance(d.diagnostics, next_diag_, diag_);
+  advance(d.surface, next_surface_, surface_);
   advance(d.snapshot, next_snap_, snapshot_);
   advance(d.checkpoint, next_checkpoint_, checkpoint_);
   if (d.settled) settled_pending_ = false;

@@ -4,7 +4,7 @@
 //
 // Output times are multiples of the intervals counted from t_start, also after a restart:
 // energy.csv every output.energy_interval (and with every snapshot), diagnostics.csv every
-// diagnostics.interval, a snapshot every output.snapshot_interval, checkpoint.bin every
+// diagnostics.interval, shoe_surface.csv every diagnostics.surface_interval, a snapshot every output.snapshot_interval, checkpoint.bin every
 // output.checkpoint_interval; all of them at the last step. A run that starts before the
 // shoe moves (t < 0) saves the state of t = 0 once, as settled.bin.
 #pragma once
@@ -26,7 +26,7 @@ class OutputSchedule {
   // t_now: the time the run starts from (t_start, or a checkpoint's time).
   OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now);
   struct Due {
-    bool energy = false, diagnostics = false, snapshot = false, checkpoint = false, settled = false, last = false;
+    bool energy = false, diagnostics = false, surface = false, snapshot = false, checkpoint = false, settled = false, last = false;
   };
   // What is due after a step that ended at time t; moves the next times past t.
   Due after_step(double t);
@@ -35,8 +35,8 @@ class OutputSchedule {
  private:
   double next_after(double interval, double t) const;
   double t_start_, t_end_, tiny_;
-  double energy_, snapshot_, checkpoint_, diag_;  // intervals
-  double next_energy_, next_snap_, next_checkpoint_, next_diag_;
+  double energy_, snapshot_, checkpoint_, diag_, surface_;  // intervals
+  double next_energy_, next_snap_, next_checkpoint_, next_diag_, next_surface_;
   bool with_diag_, settled_pending_;
 };
 

@@ -360,7 +360,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
 
   std::unique_ptr<io::SnapshotSeries> snapshots;
   std::unique_ptr<io::GridSnapshotSeries> air_snapshots;
-  std::FILE *energy = nullptr, *diag_csv = nullptr;
+  std::FILE *energy = nullptr, *diag_csv = nullptr, *surface_csv = nullptr;
   const std::string series_comment = fmt::format("case {}, {} MPI ranks", info.case_file, R.size);
   auto open_csv = [&](const std::string& name, const std::string& hdr) {
     return open_series(c.output.dir, name, hdr, series_comment, restart, dem->time());
@@ -370,6 +370,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
     energy = open_csv("energy.csv", energy_csv_header());
     if (diag_spec.enabled) diag_csv = open_csv("diagnostics.csv", diag.csv_header());
+    if (diag_spec.enabled) surface_csv = open_csv("shoe_surface.csv", diag.surface_header());
   });
   const std::string last_good = (out / "last_good.h5").string();
   const std::string checkpoint = (out / "checkpoint.bin").string();
@@ -413,19 +414,34 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     gather(false);
     // The pressure cells: this block's sums, added over the ranks.
     std::vector<DieDiagnostics::PressureSum> sums;
+    PathFlux paths;
     if (with_air) {
       sums = diag.pressure_sums(air, grid, air_case.fluid);
+      paths = diag.path_fluxes(air, dem->time());
       std::vector<double> v;
       for (const auto& q : sums) v.push_back(q.sum), v.push_back(double(q.cells));
+      v.push_back(paths.cavity), v.push_back(paths.walls), v.push_back(paths.open);
       parallel::check_mpi(MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_SUM, comm),
-                          "MPI_Allreduce", "pressure cells");
+                          "MPI_Allreduce", "pressure cells and air paths");
       for (size_t q = 0; q < sums.size(); ++q) sums[q].sum = v[2 * q], sums[q].cells = std::lround(v[2 * q + 1]);
+      paths = {v[2 * sums.size()], v[2 * sums.size() + 1], v[2 * sums.size() + 2]};
     }
     together(R, "diagnostics.csv", true, [&] {
       DiagnosticsRow row = diag.row(dem->time(), all, nullptr, nullptr);
-      if (with_air) row.pressure = diag.mean_pressures(sums);
+      if (with_air) {  // the bubble census needs the whole grid: not over ranks (NaN)
+        row.pressure = diag.mean_pressures(sums);
+        row.q_cavity = paths.cavity, row.q_walls = paths.walls, row.q_open = paths.open;
+      }
       std::fprintf(diag_csv, "%s\n", diag.csv_line(row).c_str());
       std::fflush(diag_csv);
+    });
+  };
+  auto write_surface = [&] {
+    if (!diag_spec.enabled) return;
+    gather(false);
+    together(R, "shoe_surface.csv", true, [&] {
+      std::fputs(diag.surface_rows(dem->time(), all).c_str(), surface_csv);
+      std::fflush(surface_csv);
     });
   };
   auto check_health = [&] {
@@ -486,6 +502,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     observe(0);
     write_energy();
     write_diagnostics();
+    write_surface();
     write_snapshot();
     write_checkpoint_to(checkpoint);
   }
@@ -523,6 +540,10 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     if (due.diagnostics) {
       auto ts = out_timers.scope(t_series);
       write_diagnostics();
+    }
+    if (due.surface) {
+      auto ts = out_timers.scope(t_series);
+      write_surface();
     }
     if (due.snapshot) {
       auto ts = out_timers.scope(t_snap);
@@ -565,6 +586,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   together(R, "final outputs", true, [&] {
     std::fclose(energy);
     if (diag_csv) std::fclose(diag_csv);
+    if (surface_csv) std::fclose(surface_csv);
     if (diag_spec.enabled) write_impacts(c.output.dir, diag);
     io::write_metrics((out / "metrics.csv").string(),
                       run_metrics(c.output.dir, dem->time(), present, e, removed, diag_spec.enabled,
