@@ -3,7 +3,7 @@
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
-//   cgdem spectrum | converge | scale ...   (the analysis commands, scaling/*_command.hpp)
+//   cgdem spectrum | converge | scale | compare ...   (the analysis commands, scaling/*_command.hpp)
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -17,6 +17,7 @@
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "scaling/compare_command.hpp"
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
 #include "scaling/spectrum_command.hpp"
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
   cgdem::scaling::SpectrumCommand spectrum(app);
   cgdem::scaling::ConvergeCommand converge(app);
   cgdem::scaling::ScaleCommand scale(app);
+  cgdem::scaling::CompareCommand compare(app);
 
   CLI11_PARSE(app, argc, argv);
   if (openblas_set_num_threads) openblas_set_num_threads(1);
@@ -131,6 +133,7 @@ int main(int argc, char** argv) {
     if (spectrum.selected()) return spectrum.run();
     if (converge.selected()) return converge.run();
     if (scale.selected()) return scale.run();
+    if (compare.selected()) return compare.run();
   } catch (const cgdem::Error& e) {
     std::fprintf(stderr, "cgdem: error: %s\n", e.what());
     return 2;
