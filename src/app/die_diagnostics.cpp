@@ -106,7 +106,10 @@ PathFlux DieDiagnostics::path_fluxes(const fluid::FluidState& air, double t) con
           f.y > d.mouth_y0 + d.mouth_width)
         continue;
       const double flux = 0.5 * (air.eps(i, j, k) + air.eps(i, j, k - 1)) * air.w(i, j, k) * area;
-      const bool cavity = f.x >= c0.x && f.x <= c1.x && f.y >= c0.y && f.y <= c1.y;
+      // The volume-weighted forcing smears a wall's face over one cell: air rising within a
+      // cell of the cavity's inner faces enters the cavity, and is counted with it.
+      const double s = g.dx;
+      const bool cavity = f.x >= c0.x - s && f.x <= c1.x + s && f.y >= c0.y - s && f.y <= c1.y + s;
       const bool shoe = f.x >= c0.x - w && f.x <= c1.x + w && f.y >= c0.y - w && f.y <= c1.y + w;
       (cavity ? q.cavity : shoe ? q.walls : q.open) += flux;
     }

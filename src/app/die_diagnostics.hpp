@@ -27,7 +27,9 @@
 //                     plane just below the table top, over the die mouth, split by what lies
 //                     above each face at that moment: the cavity (air that must cross the
 //                     shoe's powder), the shoe's walls (air that can only leave through the
-//                     shoe-table gap) and nothing (the mouth open to the room), each
+//                     shoe-table gap) and nothing (the mouth open to the room); the cavity's
+//                     footprint is widened by one cell, the width over which the immersed
+//                     boundary smears its walls' inner faces; each
 //                     sum E_face w dx^2 [m^3/s] (positive: out of the die)
 //   bubbles           air enclosed by powder (fluid/bubbles.hpp, eps >= diagnostics.eps_bubble):
 //                     their number, total and largest volume, the largest one's centroid

@@ -1,5 +1,8 @@
 #include "app/run_command.hpp"
 
+#include <fmt/format.h>
+
+
 #include "app/air_case.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
@@ -38,6 +41,10 @@ int run_case_file(const RunRequest& r) {
   AirCase air = read_air_case(cfg, c.dem);
   DiagnosticsSpec diag = read_diagnostics(cfg);
   cfg.check_unused();
+  if (air.enabled && diag.enabled) {
+    const std::string w = geometry::sliding_plane_warning(diag.die, air.grid.origin.z, air.grid.dx);
+    if (!w.empty()) fmt::print(stderr, "cgdem: warning: {}\n", w);
+  }
   const RunInfo info{r.case_file, cfg.resolved_toml(), r.restart};
   if (r.distributed) {
 #ifdef CGDEM_WITH_MPI

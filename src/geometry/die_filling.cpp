@@ -1,5 +1,9 @@
 #include "geometry/die_filling.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
 namespace cgdem::geometry {
 
 DieFillingParams read_die_filling(const Section& s) {
@@ -30,6 +34,29 @@ DieFillingParams read_die_filling(const Section& s) {
   for (int a = 0; a < 3; ++a)
     if (!(p.cavity_size[a] > 0)) s.fail("cavity_size", "every size must be > 0");
   return p;
+}
+
+std::string sliding_plane_warning(const DieFillingParams& p, double origin_z, double dx) {
+  auto off_grid = [&](double z) {
+    const double k = (z - origin_z) / dx;
+    return std::abs(k - std::round(k)) > 1e-6;
+  };
+  const double bottom = p.table_top + p.shoe_gap;
+  std::string w;
+  if (off_grid(p.table_top) || off_grid(bottom)) {
+    w = fmt::format("the shoe slides on z = {:g} mm", 1e3 * bottom);
+    if (p.shoe_gap > 0) w += fmt::format(" above the table top z = {:g} mm", 1e3 * p.table_top);
+    w += fmt::format(", not on a plane of the {:g} mm air grid: the air cells across it move with the shoe through "
+                     "the contact (a leak of up to {:.2g} m^3/s into or out of the die)",
+                     1e3 * dx, std::abs(p.shoe_speed) * dx * p.cavity_size.y);
+    if (p.shoe_gap == 0)
+      w += fmt::format("; table_top = {:g} or {:g} mm puts it on the grid",
+                       1e3 * (origin_z + dx * std::floor((p.table_top - origin_z) / dx)),
+                       1e3 * (origin_z + dx * std::ceil((p.table_top - origin_z) / dx)));
+    else
+      w += "; a gap thinner than a cell cannot be put on the grid (shoe_gap = 0 seals it)";
+  }
+  return w;
 }
 
 void add_die_filling(Scene& scene, const DieFillingParams& p) {

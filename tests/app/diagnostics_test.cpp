@@ -19,7 +19,8 @@ namespace {
 
 DiagnosticsSpec spec() {
   DiagnosticsSpec s;
-  s.enabled = true;  // default die: mouth x 37..47 mm, y 6..36 mm, table top 14 mm, type 1
+  s.enabled = true;  // mouth x 37..47 mm, y 6..36 mm, table top 14 mm, type 1
+  s.die.table_top = 14e-3;
   s.rate_window = 2e-3;
   s.impact_window = 1e-3;
   s.cells = {{"A", {40e-3, 20e-3, 8e-3}, {41.2e-3, 21.2e-3, 9.2e-3}}};

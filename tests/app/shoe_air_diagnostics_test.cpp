@@ -17,7 +17,8 @@ namespace {
 
 DiagnosticsSpec die_spec() {
   DiagnosticsSpec s;
-  s.enabled = true;  // default die: mouth x 37..47 mm, y 6..36 mm, table top 14 mm; cavity x 22..32 mm at t = 0
+  s.enabled = true;  // die mouth x 37..47 mm, y 6..36 mm; cavity x 22..32 mm at t = 0
+  s.die.table_top = 14e-3, s.die.shoe_wall = 3e-3;
   s.cells = {{"A", {40e-3, 20e-3, 8e-3}, {41.2e-3, 21.2e-3, 9.2e-3}}};
   return s;
 }
@@ -158,9 +159,10 @@ TEST(DieDiagnostics, ShoeSurfaceOfAKnownPileAndThePowderLeftInTheShoe) {
 
 // Uniform upward air (eps 1, w = 1 cm/s) on a 1 mm grid aligned with the mouth (x 37..47,
 // y 6..36 mm; the plane z = 14 mm is a face plane). At t = 0.10 s (shoe moved 9.95 mm:
-// cavity x 31.95..41.95 mm, walls 3 mm) the mouth's faces (centres at .5 mm) lie under the
-// cavity for x < 41.95 (5 columns), under the leading wall to 44.95 (3), open beyond (2):
-// Q = w x area = 1.5e-6, 0.9e-6, 0.6e-6 m^3/s. With eps 0.5 the fluxes halve.
+// cavity x 31.95..41.95 mm, walls 3 mm) the mouth's faces (centres at .5 mm) count for the
+// cavity up to one cell beyond its inner face, x < 42.95 (6 columns), under the leading wall
+// to 44.95 (2), open beyond (2): Q = w x area = 1.8e-6, 0.6e-6, 0.6e-6 m^3/s. With eps 0.5
+// the fluxes halve.
 TEST(DieDiagnostics, AirPathsSplitTheMouthByWhatCoversIt) {
   DieDiagnostics diag(die_spec(), {1e-9}, {375e-6});
   fluid::MacGrid g;
@@ -168,10 +170,10 @@ TEST(DieDiagnostics, AirPathsSplitTheMouthByWhatCoversIt) {
   fluid::FluidState air = fluid::make_fluid_state(g);
   air.w.fill(0.01);
   PathFlux q = diag.path_fluxes(air, 0.10);
-  std::printf("[ diagnostics ] air paths: cavity %.4e, walls %.4e, open %.4e m^3/s (want 1.5e-6, 0.9e-6, 0.6e-6)\n",
+  std::printf("[ diagnostics ] air paths: cavity %.4e, walls %.4e, open %.4e m^3/s (want 1.8e-6, 0.6e-6, 0.6e-6)\n",
               q.cavity, q.walls, q.open);
-  EXPECT_NEAR(q.cavity, 1.5e-6, 1e-18);
-  EXPECT_NEAR(q.walls, 0.9e-6, 1e-18);
+  EXPECT_NEAR(q.cavity, 1.8e-6, 1e-18);
+  EXPECT_NEAR(q.walls, 0.6e-6, 1e-18);
   EXPECT_NEAR(q.open, 0.6e-6, 1e-18);
   air.eps.fill(0.5);
   q = diag.path_fluxes(air, 0.10);

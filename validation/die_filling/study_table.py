@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""The die-filling observables of the paper (section 4) from one or more run folders, as a
+Markdown table: one column per run. The geometry study of README.md is made of these.
+
+    validation/die_filling/study_table.py LABEL=RUN_DIR [LABEL=RUN_DIR ...]
+
+Reads each run's diagnostics.csv and metrics.csv (and shoe_surface.csv when present).
+Rows: front time and impact velocity, mass in the die at fixed times, the transfer rate's
+maximum, the die pressure (mean of cells A, B, C) before 0.10 s, cell B's peak, the
+largest entrapped-air volume, where the die's air left (integrated path fluxes), the powder
+left in the shoe when the die closes and at the end. Needs numpy only.
+"""
+import sys
+
+import numpy as np
+
+
+def read_csv(path):
+    with open(path) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    names = lines[0].strip().split(",")
+    rows = [l.strip().split(",") for l in lines[1:] if l.strip()]
+    return {n: np.array([float(r[c]) for r in rows]) for c, n in enumerate(names)}
+
+
+def metrics(path):
+    out = {}
+    with open(path) as f:
+        for line in f:
+            k, _, v = line.strip().partition(",")
+            if k != "name":
+                out[k] = float(v)
+    return out
+
+
+def at(d, col, t):
+    i = int(np.argmin(abs(d["t"] - t)))
+    return d[col][i] if abs(d["t"][i] - t) < 1e-3 else float("nan")
+
+
+def column(run_dir):
+    d = read_csv(run_dir + "/diagnostics.csv")
+    m = metrics(run_dir + "/metrics.csv")
+    t = d["t"]
+    v = {}
+    v["front reaches the die floor [s]"] = f"{m.get('front_time_s', float('nan')):.4f}"
+    v["mean impact velocity [m/s]"] = f"{m.get('mean_impact_velocity_m_s', float('nan')):.3f}"
+    for tt in (0.08, 0.10, 0.12, 0.14, 0.16, 0.18):
+        v[f"mass in the die at {tt:.2f} s [g]"] = f"{1e3 * at(d, 'mass_in_die', tt):.3f}"
+    ok = t >= 0
+    i = int(np.argmax(np.where(ok, d["transfer_rate"], -1)))
+    v["transfer-rate maximum [g/s] at [s]"] = f"{1e3 * d['transfer_rate'][i]:.2f} at {t[i]:.3f}"
+    cells = [c for c in ("p_A", "p_B", "p_C") if c in d]
+    if cells and np.isfinite(d[cells[0]]).any():
+        p = np.mean([d[c] for c in cells], axis=0)
+        w = (t >= 0.05) & (t <= 0.11)
+        j = int(np.argmax(np.where(w, p, -np.inf)))
+        v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = f"{at(dict(t=t, p=p), 'p', 0.08):.1f} / {at(dict(t=t, p=p), 'p', 0.10):.1f}"
+        v["its maximum over 0.05-0.11 s [Pa] at [s]"] = f"{p[j]:.1f} at {t[j]:.3f}"
+        late = t >= 0.11
+        k = int(np.argmax(np.where(late, d["p_B"], -np.inf)))
+        v["cell B peak after 0.11 s [Pa] at [s]"] = f"{d['p_B'][k]:.1f} at {t[k]:.3f}"
+    else:
+        v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = "—"
+    if "V_bubble_max" in d and np.isfinite(d["V_bubble_max"]).any():
+        vb = np.where(ok & np.isfinite(d["V_bubble_max"]), d["V_bubble_max"], 0)
+        i = int(np.argmax(vb))
+        v["largest entrapped air [mm^3] at [s]"] = f"{1e9 * vb[i]:.0f} at {t[i]:.3f}"
+        vs = np.where(ok & np.isfinite(d["V_bubbles_shoe"]), d["V_bubbles_shoe"], 0)
+        i = int(np.argmax(vs))
+        v["bubble air above the table top, max [mm^3] at [s]"] = f"{1e9 * vs[i]:.1f} at {t[i]:.3f}"
+    if "Q_cavity" in d and np.isfinite(d["Q_cavity"]).any():
+        dt = np.diff(t, prepend=t[0])
+        tot = {k: float(np.nansum(np.where(ok, d[k], 0) * dt)) for k in ("Q_cavity", "Q_shoe_walls", "Q_open_mouth")}
+        v["air out of the die via cavity / under walls / open mouth [mm^3]"] = " / ".join(
+            f"{1e9 * tot[k]:.0f}" for k in ("Q_cavity", "Q_shoe_walls", "Q_open_mouth"))
+    if "mass_in_shoe" in d:
+        v["powder in the shoe at 0.25 s / end [g]"] = f"{1e3 * at(d, 'mass_in_shoe', 0.25):.3f} / {1e3 * d['mass_in_shoe'][-1]:.3f}"
+    v["powder in the die at the end [g] (t_end [s])"] = f"{1e3 * d['mass_in_die'][-1]:.3f} ({t[-1]:.3f})"
+    return v
+
+
+def main(argv):
+    if not argv:
+        sys.exit(__doc__)
+    labels, cols = [], []
+    for a in argv:
+        label, _, run = a.partition("=")
+        if not run:
+            label, run = a.rstrip("/").split("/")[-1], a
+        labels.append(label)
+        cols.append(column(run))
+    keys = list(dict.fromkeys(k for c in cols for k in c))
+    print("| quantity | " + " | ".join(labels) + " |")
+    print("|---|" + "---|" * len(labels))
+    for k in keys:
+        print(f"| {k} | " + " | ".join(c.get(k, "—") for c in cols) + " |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
