@@ -7,7 +7,7 @@
 //   eps rho_f (u* - u^n)/dt = -eps grad p - beta (u* - v)
 //   =>  u* = (eps rho_f/dt u^n + beta v - eps grad p) / (eps rho_f/dt + beta),
 // so div(eps u*) = 0 gives div(a grad p) = rhs with a = eps^2 / (eps rho_f/dt + beta).
-// beta from Ergun (physics.md, eq. (9) of the paper, Ergun branch):
+// beta from Ergun (docs/model.md, Drag: eq. (9) of the paper, Ergun branch):
 //   beta = 150 mu (1-eps)^2 / (eps d^2) + 1.75 (1-eps) rho_f |u-v| / d,
 // d = 125 um, mu = 1.8e-5 Pa s, rho_f = 1 kg/m^3, dt = 1e-4 s, |u-v| = 0.05 m/s.
 // Packed (eps = 0.45): the die x in [37,47], y in [6,36], z in [2,14] mm and the shoe cavity

@@ -34,7 +34,7 @@ class InputError(Exception):
 
 
 # ---------------------------------------------------------------- the paper's numbers
-# physics.md section 5 (times in s, speeds in m/s). The paper gives the impact velocity
+# docs/model.md, section 6 (times in s, speeds in m/s). The paper gives the impact velocity
 # of the original (l = 1) and coarse-grained (l = 2, 3) systems, none for the simply large
 # case (x-4); the peak times are read from its text ("~0.19 s", "around 0.18 s").
 PAPER = {

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Prints a Markdown table of our numbers beside the paper's (physics.md section 5) for
+"""Prints a Markdown table of our numbers beside the paper's (docs/model.md, section 6) for
 the given run folders, for README.md.
 
 Reads, per run: config.resolved.toml, metrics.csv, diagnostics.csv and, when it finds one,

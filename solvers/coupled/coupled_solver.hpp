@@ -1,4 +1,4 @@
-// The coupled DEM-CFD step (paper sections 2-3; physics.md "stability facts").
+// The coupled DEM-CFD step (paper sections 2-3; docs/model.md, Stability).
 //
 // One fluid step t^n -> t^{n+1} = t^n + dt_f, dt_f = N dt_DEM:
 //   1. air -> parcels   u_f, eps, grad p at every parcel from the air at t^n; the linear

@@ -1,4 +1,4 @@
-// Die-filling diagnostics (the observables of the paper, physics.md section 5), read from
+// Die-filling diagnostics (the observables of the paper, docs/model.md, section 6), read from
 // the parcels and the air while a case runs:
 //
 //   mass in the die   M(t) = sum of parcel masses whose centre is below the table top

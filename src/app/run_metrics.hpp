@@ -2,7 +2,7 @@
 // run from its time series on disk (so a restarted run reports the whole history).
 //
 // Every run:      end_time_s, particles, solid_mass_kg, E_kin_trans_J (final), removed
-// Die filling:    front_time_s, mean_impact_velocity_m_s (physics.md section 5; NaN before
+// Die filling:    front_time_s, mean_impact_velocity_m_s (docs/model.md, section 6; NaN before
 //                 the front reaches the floor), fill_mass_kg (solid mass in the die at the
 //                 end), transfer_rate_peak_kg_s and transfer_rate_peak_time_s, and for each
 //                 pressure cell X: p_X_peak_Pa and p_X_peak_time_s (largest gauge pressure)

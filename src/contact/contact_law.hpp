@@ -1,5 +1,5 @@
 // Linear spring-dashpot contact with Coulomb friction and tangential history, scaled for
-// coarse-grained parcels (paper eqs. 6-7, 16-17; physics.md section 1).
+// coarse-grained parcels (paper eqs. 6-7, 16-17; docs/model.md, section 1).
 //
 //   normal      F_n = l^3 ( k delta - eta v_n ) n                         eq. (6)
 //   tangential  F_t* = l^3 ( -k xi - eta v_t ),   xi += v_t dt (history)  eq. (7)
@@ -57,7 +57,7 @@ inline double damping_ratio(double e) {
 inline double damping_coefficient(double e, double m_eff, double k) {
   return 2.0 * damping_ratio(e) * std::sqrt(m_eff * k);
 }
-// Closed forms of an isolated linear spring-dashpot collision (references.md).
+// Closed forms of an isolated linear spring-dashpot collision (docs/references.md, Collision).
 inline double contact_time(double e, double m_eff, double k) {
   double z = damping_ratio(e);
   return std::numbers::pi * std::sqrt(m_eff / k) / std::sqrt(1.0 - z * z);

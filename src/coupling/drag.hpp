@@ -1,6 +1,6 @@
 // Fluid-particle drag (paper eqs. 8-11), evaluated with the ORIGINAL particle diameter d_O
 // whatever the coarse-grain ratio, so that a parcel of l^3 particles feels l^3 times the
-// drag of one of them (physics.md section 2):
+// drag of one of them (docs/model.md, Drag):
 //
 //   F_D = V beta / (1 - eps) (u_f - v)                                       eq. (8)
 //   eps <= 0.8, Ergun:   beta = 150 mu (1-eps)^2 / (eps d_O^2)

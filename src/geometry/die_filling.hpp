@@ -1,4 +1,4 @@
-// The die-filling geometry of the paper (section 3; physics.md section 4), built from
+// The die-filling geometry of the paper (section 3; docs/model.md, Die filling), built from
 // convex parts so that every concave corner is two separate wall contacts.
 //
 //   x along the shoe's travel, z up; the table top is at z = table_top.

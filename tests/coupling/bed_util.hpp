@@ -40,7 +40,7 @@ struct BedSpec {
   double dt_fluid_max = 1e-4; // [s]
   double inflow = 0;          // U_w of the bottom Wall side [m/s]
   unsigned seed = 7;
-  MaterialParams material{};  // k 50 N/m, e 0.9, mu 0.3 (physics.md Table 1)
+  MaterialParams material{};  // k 50 N/m, e 0.9, mu 0.3 (paper, Table 1)
 };
 
 struct Bed {

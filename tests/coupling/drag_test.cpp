@@ -1,5 +1,5 @@
-// Drag correlations (paper eqs. 8-11) against closed forms and the numbers of physics.md
-// section 2: terminal velocity of a 125 um particle, Ergun pressure gradient of a fixed
+// Drag correlations (paper eqs. 8-11) against closed forms and the numbers of
+// docs/references.md: terminal velocity of a 125 um particle, Ergun pressure gradient of a fixed
 // bed, Wen-Yu minimum fluidization velocity.
 #include <gtest/gtest.h>
 
@@ -29,7 +29,7 @@ double terminal(double d_o, double d_parcel) {
 }  // namespace
 
 TEST(Drag, TerminalVelocityIsTheSameForEveryRatio) {
-  const double want = 0.520;  // physics.md section 2 (Re 3.6)
+  const double want = 0.520;  // docs/references.md, Terminal velocity (Re 3.6)
   double worst = 0;
   for (double l : {1.0, 2.0, 3.0}) {
     const double v = terminal(125e-6, l * 125e-6);
@@ -72,7 +72,7 @@ TEST(Drag, BranchesAndZeroSlipAreFinite) {
 }
 
 TEST(Drag, WenYuMinimumFluidizationVelocity) {
-  // Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7 (references.md), d_O = 125 um: 7.7 mm/s.
+  // Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7 (docs/references.md, Wen-Yu), d_O = 125 um: 7.7 mm/s.
   const double d = 125e-6;
   const double ar = std::pow(d, 3) * air.rho * (rho_p - air.rho) * g / (air.mu * air.mu);
   const double re = std::sqrt(33.7 * 33.7 + 0.0408 * ar) - 33.7;

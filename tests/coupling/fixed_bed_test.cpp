@@ -1,6 +1,6 @@
 // Air through a fixed bed (parcels held in place), superficial velocity U = 1 cm/s,
 // eps = 0.4, d_O = 125 um: the pressure gradient inside the bed must match Ergun's
-// equation, 9733 Pa/m (physics.md section 2), for l = 1, 2, 3, and stay the same at fluid
+// equation, 9733 Pa/m (docs/references.md, Fixed bed), for l = 1, 2, 3, and stay the same at fluid
 // steps of 1e-5 s, 1e-4 s and the largest the step limits allow (the air's drag relaxation
 // time in the bed is ~1e-5 s: only a semi-implicit drag survives the larger steps).
 //

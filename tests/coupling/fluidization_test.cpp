@@ -13,7 +13,7 @@
 // dp = p(bottom cells) - p(top cells) - rho_f g dz is averaged over the end of each step.
 // U_mf is where the linear fit of the fixed-bed branch (2.5, 5, 7.5 mm/s) reaches the
 // buoyant weight per area W/A. References:
-//   * Wen & Yu (1966), references.md: Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7, 7.7 mm/s.
+//   * Wen & Yu (1966; docs/references.md): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7, 7.7 mm/s.
 //     Its constants stand for Ergun's force balance at a FIXED packing (for spheres
 //     (1-eps)/eps^3 = 11, i.e. eps_mf = 0.383, in the viscous regime that holds here,
 //     Ar = 89); a bed of frictional spheres (mu = 0.3) poured under gravity packs looser.

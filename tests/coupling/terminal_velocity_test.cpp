@@ -1,5 +1,5 @@
 // A single parcel falling through still air reaches the terminal velocity of ONE original
-// particle, 0.520 m/s for d_O = 125 um (physics.md section 2), whatever its ratio l = 1,
+// particle, 0.520 m/s for d_O = 125 um (docs/references.md, Terminal velocity), whatever its ratio l = 1,
 // 2, 3: the drag uses d_O and scales with the parcel volume like its weight. A "simply
 // large" particle (l = 1, d_O = 375 um) falls four times faster (2.11 m/s).
 //

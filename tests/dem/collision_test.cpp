@@ -1,6 +1,6 @@
 // Binary normal collisions against the closed forms of the linear spring-dashpot
-// (references.md): restitution e and contact time t_c = pi sqrt(m_eff/k)/sqrt(1-zeta^2),
-// with m_eff of the ORIGINAL pair, the same for every coarse-grain ratio l (physics.md 1).
+// (docs/references.md, Collision): restitution e and contact time t_c = pi sqrt(m_eff/k)/sqrt(1-zeta^2),
+// with m_eff of the ORIGINAL pair, the same for every coarse-grain ratio l (docs/model.md, section 1).
 #include <gtest/gtest.h>
 
 #include "dem_test_util.hpp"
@@ -116,7 +116,7 @@ TEST(Collision, MovingWallFollowsRelativeVelocityLaw) {
 }
 
 TEST(Collision, RestitutionFromDampingRatioTable) {
-  // references.md table: zeta(e) and t_c sqrt(k/m_eff).
+  // docs/references.md table: zeta(e) and t_c sqrt(k/m_eff).
   const double e[] = {0.1, 0.3, 0.5, 0.7, 0.9, 0.95};
   const double zeta[] = {0.59116, 0.35786, 0.21545, 0.11281, 0.03352, 0.01632};
   const double tc[] = {3.89506, 3.36440, 3.21715, 3.16178, 3.14336, 3.14201};

@@ -1,5 +1,5 @@
 // A sphere launched without spin on a frictional floor slides, then rolls:
-// rolling starts at t* = 2 v0 / (7 mu g) with v = 5/7 v0 (references.md). The contact
+// rolling starts at t* = 2 v0 / (7 mu g) with v = 5/7 v0 (docs/references.md, Sliding). The contact
 // history is carried across many neighbour-list rebuilds on the way (the sphere travels
 // far more than the skin).
 #include <gtest/gtest.h>

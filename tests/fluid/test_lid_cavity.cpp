@@ -1,6 +1,7 @@
 // Lid-driven cavity, unit square, lid speed 1 (the +y side is a Wall with U_w = (1, 0, 0)),
 // 2-D in a one-cell periodic slab. Steady centreline velocities against Ghia, Ghia & Shin
-// (1982) (references.md). Max deviation over the tabulated points, in units of the lid speed:
+// (1982) (docs/references.md, Lid-driven cavity). Max deviation over the tabulated points,
+// in units of the lid speed:
 //   CI:   Re = 100 on 32^2: < 2 % as well (measured 0.67 %; the coarse grid already meets it)
 //         Re = 400 on 32^2: < 5 % (measured 3.49 %; the thinner boundary layers need a finer
 //         grid: 64^2 gives 0.67 % but costs ~20 s of CPU, too slow for CI)
@@ -25,7 +26,7 @@ struct Ref {
   double pos, re100, re400;
 };
 // u(y) on x = 0.5 and v(x) on y = 0.5; Ghia's row at x = 0.9063 for Re = 400 is marked as
-// inconsistent in references.md and is skipped for Re = 400 (NaN).
+// inconsistent in docs/references.md and is skipped for Re = 400 (NaN).
 const std::vector<Ref> kGhiaU = {
     {0.9766, 0.84123, 0.75837},  {0.9688, 0.78871, 0.68439},   {0.9609, 0.73722, 0.61756},
     {0.9531, 0.68717, 0.55892},  {0.8516, 0.23151, 0.29093},   {0.7344, 0.00332, 0.16256},

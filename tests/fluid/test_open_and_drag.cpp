@@ -5,7 +5,7 @@
 //    p linear in x. Criterion: rms error / u_max < 1e-2 on ny = 16 and observed order
 //    >= 1.8 from 16 to 32; pressure at cell centres linear to 1e-8 relative.
 // 2. Semi-implicit drag: periodic box, eps = 0.4, gravity g_x, uniform K (the packed-bed beta
-//    of physics.md, 5e4 kg m^-3 s^-1), Kv = 0. The air relaxation time eps rho/K = 8e-6 s is
+//    of docs/model.md, Stability: 5e4 kg m^-3 s^-1), Kv = 0. The air relaxation time eps rho/K = 8e-6 s is
 //    far below dt = 1e-3 s; steady state eps rho g = K u, i.e. u = eps rho g/K.
 //    Criterion: stable, relative error < 1e-10 after 20 steps.
 #include <gtest/gtest.h>

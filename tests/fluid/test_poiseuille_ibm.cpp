@@ -1,5 +1,6 @@
 // Plane Poiseuille flow between two immersed-boundary walls placed off the grid lines
-// (references.md): periodic in x and z, solid half-spaces y < y_lo and y > y_hi (alpha from
+// (docs/references.md, Plane Poiseuille flow): periodic in x and z, solid half-spaces
+// y < y_lo and y > y_hi (alpha from
 // the SDF, eqs. 18-20), driven by a uniform body force G = rho g_x. Exact steady profile
 //   u(y) = G/(2 mu) (y - y_lo)(y_hi - y),  u_max = G h^2/(8 mu),  h = y_hi - y_lo.
 // Error: rms over the u-faces inside the gap, relative to u_max, on three grids; started

@@ -1,5 +1,5 @@
 // Taylor-Green vortex, 2-D periodic (thin 3-D slab, one cell in z), against the exact
-// solution of references.md:
+// solution of docs/references.md (Taylor-Green vortex):
 //   u = sin x cos y F,  v = -cos x sin y F,  F = exp(-2 nu t),  KE(t) = KE(0) F^2.
 // Observed spatial order of the velocity error over three grids (dt = CFL dx, Heun in time,
 // so the combined error is O(dx^2) when the scheme is second order).
