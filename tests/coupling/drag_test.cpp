@@ -52,7 +52,7 @@ TEST(Drag, ErgunBedGradientMatchesTheReference) {
   const double grad = beta * U / (eps * eps);
   const double ergun = 150 * air.mu * std::pow(1 - eps, 2) * U / (std::pow(eps, 3) * d * d) +
                        1.75 * air.rho * (1 - eps) * U * U / (std::pow(eps, 3) * d);
-  std::printf("[ drag ] fixed bed gradient %.1f Pa/m, Ergun %.1f, physics.md 9733\n", grad, ergun);
+  std::printf("[ drag ] fixed bed gradient %.1f Pa/m, Ergun %.1f, docs/references.md: 9733\n", grad, ergun);
   EXPECT_NEAR(grad, ergun, 1e-9 * ergun);
   EXPECT_NEAR(grad, 9733, 1.0);
 }
@@ -77,6 +77,6 @@ TEST(Drag, WenYuMinimumFluidizationVelocity) {
   const double ar = std::pow(d, 3) * air.rho * (rho_p - air.rho) * g / (air.mu * air.mu);
   const double re = std::sqrt(33.7 * 33.7 + 0.0408 * ar) - 33.7;
   const double umf = re * air.mu / (air.rho * d);
-  std::printf("[ drag ] Wen-Yu U_mf = %.2f mm/s (physics.md 7.7)\n", umf * 1e3);
+  std::printf("[ drag ] Wen-Yu U_mf = %.2f mm/s (docs/references.md: 7.7)\n", umf * 1e3);
   EXPECT_NEAR(umf, 7.7e-3, 0.05e-3);
 }
