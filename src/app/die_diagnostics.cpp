@@ -92,7 +92,8 @@ PathFlux DieDiagnostics::path_fluxes(const fluid::FluidState& air, double t) con
   PathFlux q;
   const auto& d = spec_.die;
   const auto& g = air.grid;
-  // The z-face plane just below the table top, in this grid's own indices.
+  // The z-face plane at the table top, or just below it when the top is off the grid, in
+  // this grid's own indices.
   const double z_plane = g.dx * std::floor((d.table_top - g.origin.z) / g.dx * (1 + 1e-12)) + g.origin.z;
   const int k = static_cast<int>(std::lround((z_plane - g.origin.z) / g.dx));
   if (k < 0 || k >= g.nz) return q;  // not in this block (k = nz is the upper block's face)

@@ -24,7 +24,7 @@
 //   mass in the shoe  solid mass of the parcels whose centre lies inside the cavity's
 //                     footprint (moving with the shoe) above the table top [kg]
 //   air paths         the air leaving the die, as the volume flux up through the z-face
-//                     plane just below the table top, over the die mouth, split by what lies
+//                     plane at (or just below) the table top, over the die mouth, split by what lies
 //                     above each face at that moment: the cavity (air that must cross the
 //                     shoe's powder), the shoe's walls (air that can only leave through the
 //                     shoe-table gap) and nothing (the mouth open to the room); the cavity's
