@@ -1,7 +1,5 @@
 #include "app/die_diagnostics.hpp"
 
-#include "geometry/motion.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -58,7 +56,7 @@ DiagnosticsSpec read_diagnostics(Config& cfg) {
 
 DieDiagnostics::DieDiagnostics(DiagnosticsSpec spec, std::vector<double> species_mass,
                                std::vector<double> species_diameter)
-    : spec_(std::move(spec)), mass_(std::move(species_mass)), diameter_(std::move(species_diameter)) {
+    : spec_(std::move(spec)), shoe_motion_(spec_.die.shoe_motion()), mass_(std::move(species_mass)), diameter_(std::move(species_diameter)) {
   band_ = spec_.impact_band;
   if (band_ <= 0) band_ = 0.25 * *std::max_element(diameter_.begin(), diameter_.end());
 }
@@ -69,22 +67,22 @@ DiagnosticsRow::DiagnosticsRow() {
   bubbles = v_bubbles = v_bubble_max = z_bubble = z_bubble_top = v_bubbles_shoe = v_sealed = nan;
 }
 
-double DieDiagnostics::shoe_offset(double t) const {
-  const auto& p = spec_.die;
-  const geometry::Motion m({p.shoe_start, p.shoe_start + p.shoe_ramp}, {Vec3{}, Vec3{p.shoe_speed, 0, 0}});
-  return m.displacement(t).x;
+double DieDiagnostics::shoe_offset(double t) const { return shoe_motion_.displacement(t).x; }
+
+DieDiagnostics::Cavity DieDiagnostics::cavity_at(double t) const {
+  const Vec3 off{shoe_offset(t), 0, 0};
+  return {spec_.die.cavity_lo() + off, spec_.die.cavity_hi() + off};
+}
+
+bool DieDiagnostics::Cavity::holds_column(const Vec3& x) const {
+  return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z > lo.z;
 }
 
 double DieDiagnostics::mass_in_shoe(const Particles& p, double t) const {
-  const auto& d = spec_.die;
-  const Vec3 lo = d.cavity_lo(), hi = d.cavity_hi();
-  const double dx = shoe_offset(t);
+  const Cavity c = cavity_at(t);
   double m = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec3& x = p.x[i];
-    if (x.z > d.table_top && x.x >= lo.x + dx && x.x <= hi.x + dx && x.y >= lo.y && x.y <= hi.y)
-      m += mass_[p.species[i]];
-  }
+  for (size_t i = 0; i < p.size(); ++i)
+    if (c.holds_column(p.x[i])) m += mass_[p.species[i]];
   return m;
 }
 
@@ -97,8 +95,9 @@ PathFlux DieDiagnostics::path_fluxes(const fluid::FluidState& air, double t) con
   const double z_plane = g.dx * std::floor((d.table_top - g.origin.z) / g.dx * (1 + 1e-12)) + g.origin.z;
   const int k = static_cast<int>(std::lround((z_plane - g.origin.z) / g.dx));
   if (k < 0 || k >= g.nz) return q;  // not in this block (k = nz is the upper block's face)
-  const double off = shoe_offset(t), w = d.shoe_wall;
-  const Vec3 c0 = d.cavity_lo() + Vec3{off, 0, 0}, c1 = d.cavity_hi() + Vec3{off, 0, 0};
+  const double w = d.shoe_wall;
+  const Cavity cav = cavity_at(t);
+  const Vec3 c0 = cav.lo, c1 = cav.hi;
   const double area = g.dx * g.dx;
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
@@ -122,15 +121,15 @@ std::string DieDiagnostics::surface_header() const { return "t_s,bin,x_cavity_m,
 std::string DieDiagnostics::surface_rows(double t, const Particles& p) const {
   const auto& d = spec_.die;
   const int nb = spec_.surface_bins;
-  const Vec3 lo = d.cavity_lo(), hi = d.cavity_hi();
-  const double off = shoe_offset(t), len = hi.x - lo.x, bin = len / nb;
+  const Cavity c = cavity_at(t);
+  const Vec3 lo = c.lo, hi = c.hi;
+  const double len = hi.x - lo.x, bin = len / nb;
   std::vector<double> solid(nb, 0.0);
   std::vector<std::vector<double>> tops(nb);
   for (size_t i = 0; i < p.size(); ++i) {
     const Vec3& x = p.x[i];
-    const double xc = x.x - (lo.x + off);
-    if (x.z <= d.table_top || xc < 0 || xc > len || x.y < lo.y || x.y > hi.y) continue;
-    const int b = std::min(nb - 1, static_cast<int>(xc / bin));
+    if (!c.holds_column(x)) continue;
+    const int b = std::min(nb - 1, static_cast<int>((x.x - lo.x) / bin));
     const double r = p.radius[i];
     solid[b] += 4.0 / 3.0 * M_PI * r * r * r;
     tops[b].push_back(x.z + r);
@@ -146,7 +145,7 @@ std::string DieDiagnostics::surface_rows(double t, const Particles& p) const {
       std::nth_element(v.begin(), v.end() - top, v.end());
       surface = *(v.end() - top) - d.table_top;
     }
-    s += fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", t, b, (b + 0.5) * bin, lo.x + off + (b + 0.5) * bin,
+    s += fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", t, b, (b + 0.5) * bin, lo.x + (b + 0.5) * bin,
                      solid[b] / area, surface, v.size());
   }
   return s;

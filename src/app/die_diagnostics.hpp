@@ -148,9 +148,17 @@ class DieDiagnostics {
   double mass_in_die(const Particles& p) const;
   double floor_z(double x) const;
   bool in_mouth(const Vec3& x) const;
+  // The cavity's interior at time t (moved with the shoe); a point "in" it lies inside its
+  // footprint above the table top (also above the cavity's rim: a splash still counts).
+  struct Cavity {
+    Vec3 lo, hi;
+    bool holds_column(const Vec3& x) const;
+  };
+  Cavity cavity_at(double t) const;
   double mass_in_shoe(const Particles& p, double t) const;
 
   DiagnosticsSpec spec_;
+  geometry::Motion shoe_motion_;
   std::vector<double> mass_, diameter_;
   double band_ = 0;
   std::vector<uint8_t> hit_;                  // by parcel id

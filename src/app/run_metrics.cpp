@@ -89,15 +89,11 @@ io::Metrics die_metrics(const std::string& file, std::optional<std::pair<double,
   m.emplace_back("transfer_rate_peak_time_s", rate_t);
   auto has = [&](const char* n) { return std::find(t.names.begin(), t.names.end(), n) != t.names.end(); };
   if (has("mass_in_shoe")) m.emplace_back("shoe_mass_end_kg", t.col("mass_in_shoe", file).back());
-  if (has("V_bubble_max")) {
-    const auto [v, v_t] = peak(t.col("V_bubble_max", file));
-    m.emplace_back("bubble_volume_peak_m3", v);
-    m.emplace_back("bubble_volume_peak_time_s", v_t);
-  }
-  if (has("V_bubbles_shoe")) {
-    const auto [v, v_t] = peak(t.col("V_bubbles_shoe", file));
-    m.emplace_back("bubble_in_shoe_peak_m3", v);
-    m.emplace_back("bubble_in_shoe_peak_time_s", v_t);
+  for (const auto& [column, metric] : {std::pair{"V_bubble_max", "bubble_volume"}, {"V_bubbles_shoe", "bubble_in_shoe"}}) {
+    if (!has(column)) continue;
+    const auto [v, v_t] = peak(t.col(column, file));
+    m.emplace_back(std::string(metric) + "_peak_m3", v);
+    m.emplace_back(std::string(metric) + "_peak_time_s", v_t);
   }
   for (size_t c = 0; c < t.names.size(); ++c) {
     if (t.names[c].rfind("p_", 0) != 0) continue;

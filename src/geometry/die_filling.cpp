@@ -79,8 +79,7 @@ void add_die_filling(Scene& scene, const DieFillingParams& p) {
     scene.add_part(fixed, "step", make_box(lo, hi));
   }
 
-  Motion shoe_motion({p.shoe_start, p.shoe_start + p.shoe_ramp}, {Vec3{}, Vec3{p.shoe_speed, 0, 0}});
-  int shoe = scene.add_body("shoe", shoe_motion);
+  int shoe = scene.add_body("shoe", p.shoe_motion());
   const Vec3 c0 = p.cavity_lo(), c1 = p.cavity_hi();
   const double w = p.shoe_wall, z0 = p.table_top + p.shoe_gap, z1 = c1.z;
   scene.add_part(shoe, "shoe left", make_box({c0.x - w, c0.y - w, z0}, {c0.x, c1.y + w, z1}));

@@ -49,6 +49,10 @@ struct DieFillingParams {
   // Cavity interior at t = 0 (insertion region).
   Vec3 cavity_lo() const { return {cavity_x0, mouth_y0, table_top}; }
   Vec3 cavity_hi() const { return {cavity_x0 + cavity_size.x, mouth_y0 + cavity_size.y, table_top + cavity_size.z}; }
+  // The shoe's prescribed motion: at rest until shoe_start, then ramped to shoe_speed along +x.
+  Motion shoe_motion() const {
+    return Motion({shoe_start, shoe_start + shoe_ramp}, {Vec3{}, Vec3{shoe_speed, 0, 0}});
+  }
 };
 
 DieFillingParams read_die_filling(const Section& s);
