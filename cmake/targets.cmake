@@ -19,7 +19,7 @@ endfunction()
 
 # Git revision baked into the binary (refreshed at every build).
 add_custom_target(cgdem_revision
-  COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DOUT=${PROJECT_BINARY_DIR}/generated/cgdem_revision.hpp
+  COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR} -DVERSION=${PROJECT_VERSION} -DOUT=${PROJECT_BINARY_DIR}/generated/cgdem_revision.hpp
           -P ${PROJECT_SOURCE_DIR}/cmake/revision.cmake
   BYPRODUCTS ${PROJECT_BINARY_DIR}/generated/cgdem_revision.hpp)
 

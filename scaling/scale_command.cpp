@@ -16,7 +16,7 @@ namespace cgdem::scaling {
 namespace fs = std::filesystem;
 
 ScaleCommand::ScaleCommand(CLI::App& app)
-    : sub_(app.add_subcommand("scale", "coarse-grain consistency: the same case at several ratios l (issue #5)")) {
+    : sub_(app.add_subcommand("scale", "coarse-grain consistency: the same case at several ratios l")) {
   std::string th_help = "agreement threshold name=value (repeatable); defaults:";
   for (const auto& t : default_thresholds()) th_help += fmt::format(" {}={:g}", t.name, t.value);
   sub_->add_option("case", case_file_, "case file (TOML)")->required()->check(CLI::ExistingFile);

@@ -44,7 +44,7 @@ int parse_grid(const std::string& g, Args& a) {
 
 int main(int argc, char** argv) {
   CLI::App app{"cgdem: coarse-grained DEM-CFD for powder die filling"};
-  app.set_version_flag("--version", std::string("cgdem ") + cgdem::kGitRevision);
+  app.set_version_flag("--version", fmt::format("cgdem {} (revision {})", cgdem::kVersion, cgdem::kGitRevision));
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
   cgdem::bench::DemBenchArgs dem_args;
-  auto* bdem = bench->add_subcommand("dem", "dense-bed DEM benchmark (shared/bench/dem_bed)");
+  auto* bdem = bench->add_subcommand("dem", "dense-bed DEM benchmark (a settled bed of spheres, CSV x,y,z,d in m)");
   bdem->add_option("--bed", dem_args.bed, "bed CSV (x,y,z,d)")->required()->check(CLI::ExistingFile);
   bdem->add_option("--steps", dem_args.steps, "time steps")->check(CLI::PositiveNumber);
   bdem->add_option("--threads", dem_args.threads, "OpenMP threads")->check(CLI::PositiveNumber);
