@@ -172,11 +172,15 @@ double integrate(const std::vector<double>& psd, double df) {
   return s * df;
 }
 
-std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half_width, int count) {
+int lowest_peak_bin(int half_width) { return std::max(kLowestPeakBin, half_width + 1); }
+
+std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half_width, int count,
+                             const std::vector<double>* level) {
   const int n = static_cast<int>(psd.size());
   std::vector<int> maxima;
-  for (int k = 1; k < n; ++k)
-    if (psd[k] > psd[k - 1] && (k == n - 1 || psd[k] >= psd[k + 1])) maxima.push_back(k);
+  for (int k = lowest_peak_bin(half_width); k < n; ++k)
+    if (psd[k] > psd[k - 1] && (k == n - 1 || psd[k] >= psd[k + 1]) && (!level || psd[k] > (*level)[k]))
+      maxima.push_back(k);
   std::stable_sort(maxima.begin(), maxima.end(), [&](int a, int b) { return psd[a] > psd[b]; });
   std::vector<Peak> peaks;
   for (int k : maxima) {
@@ -193,6 +197,7 @@ std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half
       if (den < 0) p.f_interp = (k + 0.5 * (a - c) / den) * df;
     }
     p.band_power = band_power(psd, k, half_width, df);
+    if (level) p.level = (*level)[k], p.ratio = psd[k] / (*level)[k];
     peaks.push_back(p);
   }
   return peaks;

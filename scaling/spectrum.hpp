@@ -29,6 +29,7 @@
 // For independent signals its expectation is 1/K (non-overlapping segments; larger,
 // 1/K_eff, when the segments overlap): the bias floor of a K-segment estimate.
 #pragma once
+#include <cmath>
 #include <complex>
 #include <memory>
 #include <span>
@@ -103,16 +104,32 @@ std::vector<double> coherence(const std::vector<double>& pxx, const std::vector<
 // Integral of a one-sided density over all bins: sum_m P(f_m) df (the variance, (W4)).
 double integrate(const std::vector<double>& psd, double df);
 
-// Dominant frequencies: the local maxima of the PSD (bins 1..L/2; the DC bin is left out as
-// the segments are detrended), largest first, at least 2 h + 1 bins apart, h the main-lobe
-// half-width. f_interp refines the bin by a parabola through log P at the three bins around
-// the maximum (exact for a Gaussian lobe; within a tenth of a bin for Hann). band_power is
-// sum P df over the bins within h of the maximum: A^2/2 for a sine of amplitude A.
+// Lowest bin at which a peak is sought (spectrum_significance.hpp, (S5)): bin 0 is the removed
+// mean and bin 1 (f = 1/(L dt), the segment length) holds any trend or single pulse longer
+// than half a segment, so never below bin kLowestPeakBin = 2; and a peak must stand above
+// its left neighbour, which must lie outside the window's DC lobe (bins < h, h the main-lobe
+// half-width: the per-segment mean removal lowers them, so any broadband transient shows a
+// spurious rise from bin h - 1 to bin h). Hence the lowest peak bin max(2, h + 1): 3 for
+// Hann, 2 for rect.
+inline constexpr int kLowestPeakBin = 2;
+int lowest_peak_bin(int half_width);
+inline int lowest_peak_bin(Window w) { return lowest_peak_bin(main_lobe_half_width(w)); }
+
+// Dominant frequencies: the local maxima of the PSD from bin lowest_peak_bin(h) on (P[k] > P[k-1],
+// P[k] >= P[k+1]), largest first, at least 2 h + 1 bins apart, h the main-lobe half-width;
+// with `level`, only those whose PSD exceeds level[k] (spectrum_significance.hpp). f_interp
+// refines the bin by a parabola through log P at the three bins around the maximum (exact
+// for a Gaussian lobe; within a tenth of a bin for Hann). band_power is sum P df over the
+// bins within h of the maximum: A^2/2 for a sine of amplitude A.
 struct Peak {
   int bin = 0;
   double f = 0, f_interp = 0, psd = 0, band_power = 0;
+  // Against a background (spectrum_significance.hpp; NaN when none was given): the
+  // background PSD and the significance level at the bin, and psd / level (> 1: significant).
+  double background = NAN, level = NAN, ratio = NAN;
 };
-std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half_width, int count);
+std::vector<Peak> find_peaks(const std::vector<double>& psd, double df, int half_width, int count,
+                             const std::vector<double>* level = nullptr);
 
 // Power in the band of bins k - half_width .. k + half_width (clipped to the spectrum):
 // sum P df, the band_power of a peak at bin k.

@@ -25,8 +25,13 @@ SpectrumCommand::SpectrumCommand(CLI::App& app)
   sub_->add_option("--labels", labels_, "one label per run (default: the folder names)")->delimiter(',');
   sub_->add_option("--dt", dt_, "resample linearly onto this interval, s (non-uniform output times, or runs "
                                 "written at different intervals)");
-  sub_->add_option("--peaks", peaks_, "dominant frequencies listed per cell")->capture_default_str();
+  sub_->add_option("--peaks", peaks_, "significant peaks listed per cell, at most")->capture_default_str();
+  sub_->add_option("--confidence", confidence_,
+                   "level of the red-noise test: a peak must exceed this quantile of AR(1) noise, in (0, 1)")
+      ->capture_default_str();
   sub_->add_option("--output", output_, "output folder (default RUN_DIR/spectrum for one run; required for several)");
+  sub_->add_flag("--pointwise", pointwise_,
+                 "test each bin at --confidence (default: the global level, every bin at confidence^(1/bins))");
   sub_->add_flag("--no-plot", no_plot_, "do not run scaling/plot_spectrum.py");
 }
 
@@ -43,6 +48,8 @@ int SpectrumCommand::run() const {
   s.dt = dt_;
   s.cells = cells_;
   s.peaks = peaks_;
+  s.confidence = confidence_;
+  s.pointwise = pointwise_;
   s.plot = !no_plot_;
   std::string out = output_;
   if (out.empty()) {
@@ -52,7 +59,7 @@ int SpectrumCommand::run() const {
   const SpectrumAnalysis a = analyse_runs(runs_, labels_, s);
   std::fputs(dominant_summary(a).c_str(), stdout);
   const std::string note = write_spectrum_outputs(a, out);
-  std::printf("%s\nwrote %s/spectrum.md, psd.csv, coherence.csv, peaks.csv\n", note.c_str(), out.c_str());
+  std::printf("%s\nwrote %s/spectrum.md, psd.csv, background.csv, coherence.csv, peaks.csv\n", note.c_str(), out.c_str());
   return 0;
 }
 

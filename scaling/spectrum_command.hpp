@@ -1,5 +1,5 @@
 // `cgdem spectrum RUN_DIR [RUN_DIR ...]`: Welch spectra of the cell pressures of one or
-// several runs (overlaid), their coherence and dominant frequencies (spectrum_report.hpp,
+// several runs (overlaid), their coherence and their peaks above a red-noise background (spectrum_report.hpp,
 // docs/spectra.md).
 #pragma once
 #include <CLI/CLI.hpp>
@@ -22,9 +22,9 @@ class SpectrumCommand {
   CLI::App* sub_;
   std::vector<std::string> runs_, labels_, cells_;
   std::string window_ = "hann", detrend_ = "mean", segment_, output_;
-  double overlap_ = 0.5, from_ = 0, to_ = 0, dt_ = 0;
+  double overlap_ = 0.5, from_ = 0, to_ = 0, dt_ = 0, confidence_ = 0.95;
   int peaks_ = 3;
-  bool no_plot_ = false;
+  bool no_plot_ = false, pointwise_ = false;
 };
 
 }  // namespace cgdem::scaling

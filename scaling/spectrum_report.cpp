@@ -91,6 +91,8 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
     throw Error(fmt::format("spectrum: {} label(s) for {} series", labels.size(), read.size()));
   if (!(s.overlap >= 0 && s.overlap < 1)) throw Error(fmt::format("--overlap: {} is not in [0, 1)", s.overlap));
   if (s.peaks < 1) throw Error(fmt::format("--peaks: {} (at least 1)", s.peaks));
+  if (!(s.confidence > 0 && s.confidence < 1))
+    throw Error(fmt::format("--confidence: {} is not in (0, 1) (e.g. 0.95)", s.confidence));
 
   // Series: selected range and cells, on a uniform grid (checked, or resampled onto --dt).
   std::vector<PressureSeries> series;
@@ -133,10 +135,23 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
     rs.samples = ser.t.size();
     rs.segments = welch.segments(rs.samples);
     rs.cells = ser.cells;
+    rs.dof = welch_dof(window_coefficients(a.params.window, a.params.segment), a.params.overlap, rs.segments);
     for (const auto& p : ser.p) {
       rs.psd.push_back(welch.psd(p));
       rs.variance.push_back(integrate(rs.psd.back(), welch.df()));
-      rs.peaks.push_back(find_peaks(rs.psd.back(), welch.df(), main_lobe_half_width(s.window), s.peaks));
+      // The red-noise background of this series and its level (spectrum_significance.hpp).
+      rs.ar1.push_back(fit_ar1(p, s.detrend));
+      rs.background.push_back(ar1_spectrum(rs.ar1.back(), a.f, a.params.fs));
+      rs.tested_bins = welch.bins() - lowest_peak_bin(s.window);
+      rs.bin_confidence = s.pointwise ? s.confidence : global_confidence(s.confidence, rs.tested_bins);
+      rs.pointwise_level.push_back(significance_level(rs.background.back(), rs.dof, s.confidence, a.params.segment));
+      rs.global_level.push_back(significance_level(rs.background.back(), rs.dof,
+                                                   global_confidence(s.confidence, rs.tested_bins), a.params.segment));
+      rs.level.push_back(s.pointwise ? rs.pointwise_level.back() : rs.global_level.back());
+      Peak largest;
+      rs.peaks.push_back(significant_peaks(rs.psd.back(), rs.background.back(), rs.level.back(), welch.df(),
+                                           main_lobe_half_width(s.window), s.peaks, &largest));
+      rs.largest.push_back(largest);
     }
     for (int i = 0; i < static_cast<int>(ser.p.size()); ++i)
       for (int j = i + 1; j < static_cast<int>(ser.p.size()); ++j) {
@@ -151,18 +166,28 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
 std::string dominant_summary(const SpectrumAnalysis& a) {
   std::string out;
   const double df = a.params.fs / a.params.segment;
+  const double pct = 100 * a.settings.confidence;
   for (const RunSpectrum& r : a.runs) {
-    out += fmt::format("{}: t in [{:.6g}, {:.6g}] s, {} samples, {} segment(s) of {} (df = {:.6g} Hz)\n", r.label,
-                       r.t_first, r.t_last, r.samples, r.segments, a.params.segment, df);
+    out += fmt::format("{}: t in [{:.6g}, {:.6g}] s, {} samples, {} segment(s) of {} (df = {:.6g} Hz, nu = {:.3g}); "
+                       "peaks sought from bin {} ({:.6g} Hz) on, above the {} {:g} % level of AR(1) red noise\n",
+                       r.label, r.t_first, r.t_last, r.samples, r.segments, a.params.segment, df, r.dof,
+                       lowest_peak_bin(a.params.window), lowest_peak_bin(a.params.window) * df,
+                       a.settings.pointwise ? "pointwise" : fmt::format("global (over {} bins)", r.tested_bins), pct);
     for (size_t c = 0; c < r.cells.size(); ++c) {
+      const Ar1Fit& fit = r.ar1[c];
       if (r.peaks[c].empty()) {
-        out += fmt::format("  {}: no peak (flat spectrum)\n", r.cells[c]);
+        const Peak& m = r.largest[c];
+        out += fmt::format("  {}: no significant peak (AR(1) phi = {:.4f}, variance {:.4g} Pa^2", r.cells[c], fit.phi,
+                           fit.variance);
+        out += m.bin < 0 ? "; no local maximum in the searched bins)\n"
+                         : fmt::format("; the largest local maximum, {:.6g} Hz, is {:.2f} of the level)\n", m.f,
+                                       m.ratio);
         continue;
       }
       const Peak& p = r.peaks[c][0];
-      out += fmt::format("  {}: dominant {:.6g} Hz (interpolated {:.6g} Hz), PSD {:.4g} Pa^2/Hz, band power {:.4g} Pa^2 "
-                         "= {:.1f} % of the variance {:.4g} Pa^2\n",
-                         r.cells[c], p.f, p.f_interp, p.psd, p.band_power,
+      out += fmt::format("  {}: dominant {:.6g} Hz (interpolated {:.6g} Hz), PSD {:.4g} Pa^2/Hz = {:.3g} x the {:g} % "
+                         "level (AR(1) phi = {:.4f}), band power {:.4g} Pa^2 = {:.1f} % of the variance {:.4g} Pa^2\n",
+                         r.cells[c], p.f, p.f_interp, p.psd, p.ratio, pct, fit.phi, p.band_power,
                          r.variance[c] > 0 ? 100 * p.band_power / r.variance[c] : 0.0, r.variance[c]);
     }
   }
@@ -239,9 +264,14 @@ std::string spectra_method(const PressureSpectra& p, double t0) {
       "each segment, segment L = {} samples = {} s (the largest power of two giving 8 segments of the shortest "
       "run). Every run goes through this one estimator (fs = {} Hz, the same L), so the runs share the bins "
       "f_m = m fs / L (df = {} Hz, up to {} Hz): `spectrum/psd.csv` holds them side by side on that one frequency "
-      "column.",
+      "column. A peak is the largest local maximum of the PSD from bin {} (f >= {} Hz; bins 0 and 1 hold the mean "
+      "and whatever varies over a segment length, a transient pulse, and the peak's left neighbour must lie outside "
+      "the window's DC lobe) that exceeds the {:g} % level of an AR(1) "
+      "red-noise background fitted to the run's own series (docs/spectra.md); a cell without one reads \"no "
+      "significant peak\".",
       t0, to_string(w.window), 100.0 * w.overlap / w.segment, to_string(w.detrend), w.segment,
-      num(w.segment / w.fs, 4), num(w.fs, 6), num(w.fs / w.segment, 4), num(p.analysis.f.back(), 6));
+      num(w.segment / w.fs, 4), num(w.fs, 6), num(w.fs / w.segment, 4), num(p.analysis.f.back(), 6), lowest_peak_bin(w.window),
+      num(lowest_peak_bin(w.window) * w.fs / w.segment, 4), 100 * p.analysis.settings.confidence);
   if (p.resampled_dt > 0)
     t += fmt::format(" The series were resampled linearly onto dt = {:g} s (the first run's median interval) because "
                      "{}.",
@@ -257,8 +287,7 @@ int segments_of(const SpectrumAnalysis& a, const std::string& run) {
 
 std::string spectra_table(const PressureSpectra& p, const std::vector<SpectrumDeviation>& dev, const std::string& ref) {
   std::string t = fmt::format(
-      "Dominant peak of each cell (largest local maximum of the PSD, DC left out; interpolated frequency in "
-      "brackets), its band power (sum P df over the main lobe), the power of the run in the bins of {0}'s peak, and "
+      "Dominant significant peak of each cell (interpolated frequency in brackets), its band power (sum P df over the main lobe), the power of the run in the bins of {0}'s peak, and "
       "the variance (integral of the PSD); deviations from {0} as (x - x_ref) / x_ref, frequency offsets in bins:\n\n"
       "| run | cell | segments K | dominant f (Hz) | offset vs {0} (bins) | band power (Pa^2) | vs {0} | "
       "power in {0}'s band (Pa^2) | vs {0} | variance (Pa^2) | vs {0} |\n"
@@ -266,8 +295,9 @@ std::string spectra_table(const PressureSpectra& p, const std::vector<SpectrumDe
       ref);
   for (const SpectrumDeviation& d : dev) {
     const std::string offset = std::isfinite(d.offset_bins) ? fmt::format("{:+.2f}", d.offset_bins) : "n/a";
-    t += fmt::format("| {} | {} | {} | {} ({}) | {} | {} | {} | {} | {} | {} | {} |\n", d.run, d.cell,
-                     segments_of(p.analysis, d.run), num(d.f, 5), num(d.f_interp, 5), offset, num(d.band_power, 4),
+    const std::string f = std::isfinite(d.f) ? num(d.f, 5) + " (" + num(d.f_interp, 5) + ")" : "no significant peak";
+    t += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", d.run, d.cell,
+                     segments_of(p.analysis, d.run), f, offset, num(d.band_power, 4),
                      percent(d.band_power_dev), num(d.power_in_ref_band, 4), percent(d.ref_band_dev),
                      num(d.variance, 4), percent(d.variance_dev));
   }
@@ -278,7 +308,11 @@ void print_spectra(const PressureSpectra& p, const std::vector<SpectrumDeviation
   if (!p.not_applicable.empty()) fmt::print("spectrum: not applicable: {}\n", p.not_applicable);
   for (const auto& w : p.left_out) fmt::print("spectrum: left out {}\n", w);
   for (const SpectrumDeviation& d : dev)
-    fmt::print("spectrum {} {}: dominant {:.6g} Hz (offset {:.3g} bins), band power {:.4g} Pa^2 ({}), variance "
+    if (!std::isfinite(d.f))
+      fmt::print("spectrum {} {}: no significant peak, variance {:.4g} Pa^2 ({})\n", d.run, d.cell, d.variance,
+                 percent(d.variance_dev));
+    else
+      fmt::print("spectrum {} {}: dominant {:.6g} Hz (offset {:.3g} bins), band power {:.4g} Pa^2 ({}), variance "
                "{:.4g} Pa^2 ({})\n",
                d.run, d.cell, d.f_interp, d.offset_bins, d.band_power, percent(d.band_power_dev), d.variance,
                percent(d.variance_dev));
@@ -352,16 +386,17 @@ std::vector<SpectrumDeviation> spectrum_deviations(const SpectrumAnalysis& a, co
         d.f_interp = r.peaks[c][0].f_interp;
         d.band_power = r.peaks[c][0].band_power;
       }
-      if (!ref || c >= ref->cells.size() || ref->cells[c] != r.cells[c] || ref->peaks[c].empty()) {
+      const bool same_cell = ref && c < ref->cells.size() && ref->cells[c] == r.cells[c];
+      if (same_cell) d.variance_dev = relative_deviation(d.variance, ref->variance[c]);
+      if (!same_cell || ref->peaks[c].empty()) {  // no significant reference peak: no band to compare
         out.push_back(d);
         continue;
       }
       const Peak& rp = ref->peaks[c][0];
       d.power_in_ref_band = band_power(r.psd[c], rp.bin, h, df);
-      d.offset_bins = (d.f_interp - rp.f_interp) / df;
+      d.offset_bins = (d.f_interp - rp.f_interp) / df;  // NaN when this run has no significant peak
       d.band_power_dev = relative_deviation(d.band_power, rp.band_power);
       d.ref_band_dev = relative_deviation(d.power_in_ref_band, rp.band_power);
-      d.variance_dev = relative_deviation(d.variance, ref->variance[c]);
       out.push_back(d);
     }
   return out;

@@ -8,8 +8,12 @@
 // (spectrum.hpp: same fs, segment, overlap, window for every run, so the columns share f):
 //   psd.csv        f_Hz, then <label>:<cell> per run and cell         (Pa^2/Hz, one-sided)
 //   coherence.csv  f_Hz, then <label>:<cell>-<cell> per run and pair  (magnitude-squared)
-//   peaks.csv      run,cell,rank,f_Hz,f_interp_Hz,psd_Pa2_per_Hz,band_power_Pa2,variance_fraction
-//   spectrum.md    parameters, resolution, segments, window correction, dominant frequencies
+//   peaks.csv      run,cell,rank,f_Hz,f_interp_Hz,psd_Pa2_per_Hz,band_power_Pa2,variance_fraction,
+//                  background_Pa2_per_Hz,level_Pa2_per_Hz,ratio_to_level: the significant peaks only
+//   background.csv f_Hz, then <label>:<cell>:background and <label>:<cell>:level per run and
+//                  cell: the fitted AR(1) spectrum and its significance level (Pa^2/Hz)
+//   spectrum.md    parameters, resolution, segments, window correction, the red-noise fit,
+//                  the significant peaks (or "no significant peak"), coherence
 //   psd.png, coherence.png when python3 with matplotlib is found (scaling/plot_spectrum.py)
 // every file written atomically. Below: the pressure spectra section of `cgdem scale`.
 #pragma once
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "scaling/spectrum.hpp"
+#include "scaling/spectrum_significance.hpp"
 #include "scaling/spectrum_series.hpp"
 
 namespace cgdem::scaling {
@@ -31,7 +36,9 @@ struct SpectrumSettings {
   std::optional<double> from, to;  // time range, s
   std::vector<std::string> cells;  // empty: every p_ column of the first run
   double dt = 0;                   // > 0: resample every run onto this interval, s
-  int peaks = 3;                   // dominant frequencies per cell
+  int peaks = 3;                   // significant peaks listed per cell, at most
+  double confidence = 0.95;        // level of the red-noise test (spectrum_significance.hpp), (0, 1)
+  bool pointwise = false;          // test each bin at `confidence` instead of the global (Sidak) level
   bool plot = true;                // try the PNG (never fails without python3/matplotlib)
 };
 
@@ -45,7 +52,15 @@ struct RunSpectrum {
   std::vector<double> variance;                // [cell] integral of the PSD, Pa^2 (W4)
   std::vector<std::pair<int, int>> pairs;      // cell index pairs (i < j)
   std::vector<std::vector<double>> coherence;  // [pair][bin]
-  std::vector<std::vector<Peak>> peaks;        // [cell], largest first
+  double dof = 0;                              // nu of the Welch estimate (S3)
+  std::vector<Ar1Fit> ar1;                     // [cell] red-noise fit (S2)
+  // [cell][bin] (S1) and (S4), Pa^2/Hz: the pointwise level, the global one, and `level`, the
+  // one peaks are tested against (the global level unless settings.pointwise).
+  std::vector<std::vector<double>> background, pointwise_level, global_level, level;
+  int tested_bins = 0;           // M of (S4): the bins searched for peaks
+  double bin_confidence = 0;     // the per-bin confidence of `level`
+  std::vector<std::vector<Peak>> peaks;        // [cell] significant peaks, largest first (may be empty)
+  std::vector<Peak> largest;                   // [cell] largest local maximum from lowest_peak_bin on (bin -1: none)
 };
 
 struct SpectrumAnalysis {
@@ -72,7 +87,8 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> series, const std::v
 // or why it was skipped).
 std::string write_spectrum_outputs(const SpectrumAnalysis& a, const std::string& dir);
 
-// One line per run and cell: the dominant frequency, its PSD and band power.
+// One line per run and cell: the dominant significant frequency, its PSD, band power and
+// ratio to the level, or "no significant peak" and how far the largest maximum stays below.
 std::string dominant_summary(const SpectrumAnalysis& a);
 
 // analyse_runs + write_spectrum_outputs: the entry point for `cgdem scale`.
@@ -100,8 +116,8 @@ struct PressureSpectra {
 PressureSpectra analyse_pressure_spectra(const std::vector<std::string>& run_dirs,
                                          const std::vector<std::string>& labels, double t0);
 
-// The dominant peak (rank 1) of each run and cell against the reference run on the shared
-// bins: the frequency offset in bins (interpolated frequencies), and the relative deviations
+// The dominant significant peak (rank 1; NaN fields when the cell has none) of each run and
+// cell against the reference run on the shared bins: the frequency offset in bins (interpolated frequencies), and the relative deviations
 // (x - x_ref) / x_ref of the band power of the run's own peak, of the power in the bins of
 // the reference's peak (the same bins for both runs: a peak that moved away reads -100 %),
 // and of the variance. NaN where the reference run, its cell or a peak is missing.
