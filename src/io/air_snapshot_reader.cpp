@@ -70,21 +70,25 @@ std::string joined(const std::vector<std::string>& names) {
 }  // namespace
 
 double read_snapshot_time(const std::string& path) {
+  h5::Quiet quiet;
   h5::Id file = h5::open_file(path);
   return h5::read_double_attribute(file, "time", path);
 }
 
 AirGrid read_air_grid(const std::string& path) {
+  h5::Quiet quiet;
   h5::Id file = h5::open_file(path);
   return read_grid_group(file, path);
 }
 
 std::vector<std::string> air_field_names(const std::string& path) {
+  h5::Quiet quiet;
   h5::Id file = h5::open_file(path);
   return cell_field_names(file, path);
 }
 
 AirSnapshot read_air_snapshot(const std::string& path, const std::vector<std::string>& fields) {
+  h5::Quiet quiet;
   h5::Id file = h5::open_file(path);
   AirSnapshot s;
   s.time = h5::read_double_attribute(file, "time", path);

@@ -8,14 +8,30 @@
 
 namespace cgdem::io {
 
-GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume)
+const FieldInfo* air_field_info(const std::string& name) {
+  static const FieldInfos known = {
+      {"eps", {"1", "air volume fraction (void fraction) of the cell: 1 minus the parcels' volume fraction"}},
+      {"p",
+       {"Pa", "air pressure at the cell centre, relative to the open sides' pressure (air.sides "
+              "open_pressure, 0 by default); it includes the hydrostatic part"}},
+      {"alpha", {"1", "wall fraction of the cell (immersed boundary): 0 all fluid, 1 inside a wall"}},
+      {"u",
+       {"m/s", "interstitial air velocity (x, y, z) at the cell centre: mean of the two MAC face values of each "
+               "component"}}};
+  auto it = known.find(name);
+  return it == known.end() ? nullptr : &it->second;
+}
+
+GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
+                                       int compression)
     : dir_(std::move(dir)),
       prefix_(std::move(prefix)),
       attributes_(std::move(attributes)),
+      compression_(compression),
       index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
   check_series_name(prefix_, "grid snapshot prefix");
-  for (const char* k : {"time", "step"})
-    if (attributes_.count(k)) throw Error(std::string("grid snapshot attribute '") + k + "' is reserved");
+  detail::check_reserved_attributes(attributes_, "grid snapshot");
+  h5::check_level(compression_, dir_ + "/" + prefix_ + "_*.h5");
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
@@ -28,7 +44,9 @@ std::string GridSnapshotSeries::snapshot_path(int64_t step) const {
 }
 
 std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
-                                      const CellScalars& scalars, const CellVectors& vectors) {
+                                      const CellScalars& scalars, const CellVectors& vectors,
+                                      const FieldInfos& info) {
+  h5::Quiet quiet;
   const std::string path = snapshot_path(step);
   if (nx < 1 || ny < 1 || nz < 1)
     throw Error(path + ": grid must have at least one cell per direction, got " + std::to_string(nx) + "x" +
@@ -37,8 +55,15 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
   const size_t ncell = static_cast<size_t>(nx) * ny * nz;
   Entry e{step, time, {nx, ny, nz}, origin, spacing, {}, {}};
   std::set<std::string> names;
+  auto info_of = [&](const std::string& name) -> const FieldInfo& {
+    auto it = info.find(name);
+    if (it != info.end()) return it->second;
+    if (const FieldInfo* known = air_field_info(name)) return *known;
+    throw Error(path + ": grid field '" + name + "' has no units and description");
+  };
   auto check_field = [&](const std::string& name, size_t size) {
     check_series_name(name, "grid field name");
+    info_of(name);
     if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
     if (size != ncell)
       throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
@@ -55,22 +80,23 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
   AtomicTarget target(path);
   {
     h5::Id file = h5::create_file(target.tmp_path(), path);
-    for (const auto& [k, v] : attributes_) h5::write_attribute(file, k, v, path);
-    h5::write_attribute(file, "time", time, path);
-    h5::write_attribute(file, "step", step, path);
+    detail::write_file_attributes(file, attributes_,
+                                  "cgdem air snapshot: cell-centred fields on a uniform grid, SI units; "
+                                  "/cells/<field>[k][j][i] is cell (i, j, k), x fastest",
+                                  Instant{time, step}, path);
     h5::Id grid = h5::create_group(file, "grid", path);
     const int64_t n[3] = {nx, ny, nz};
     const double o[3] = {origin.x, origin.y, origin.z}, h[3] = {spacing.x, spacing.y, spacing.z};
-    h5::write(grid, "n", {3}, n, path);
-    h5::write(grid, "origin", {3}, o, path);
-    h5::write(grid, "spacing", {3}, h, path);
+    h5::write(grid, "n", {3}, n, path, {"1", "number of cells along x, y, z"}, compression_);
+    h5::write(grid, "origin", {3}, o, path, {"m", "lower corner of the grid (x, y, z)"}, compression_);
+    h5::write(grid, "spacing", {3}, h, path, {"m", "cell size along x, y, z"}, compression_);
     h5::Id cells = h5::create_group(file, "cells", path);
-    for (const auto& [name, v] : scalars) h5::write(cells, name, {Z, Y, X}, v.data(), path);
+    for (const auto& [name, v] : scalars) h5::write(cells, name, {Z, Y, X}, v.data(), path, info_of(name), compression_);
     std::vector<double> packed(3 * ncell);
     for (const auto& [name, v] : vectors) {
       for (size_t c = 0; c < ncell; ++c)
         for (int k = 0; k < 3; ++k) packed[3 * c + k] = v[k][c];
-      h5::write(cells, name, {Z, Y, X, 3}, packed.data(), path);
+      h5::write(cells, name, {Z, Y, X, 3}, packed.data(), path, info_of(name), compression_);
     }
     cells.reset();
     grid.reset();
@@ -83,6 +109,7 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
 }
 
 GridSnapshotSeries::Entry GridSnapshotSeries::read_entry(int64_t step) const {
+  h5::Quiet quiet;
   const std::string path = snapshot_path(step);
   h5::Id file = h5::open_file(path);
   Entry e;

@@ -6,8 +6,12 @@
 //   <dir>/<prefix>_<step:06>.h5  /grid/n int64[3] = (nx,ny,nz), /grid/origin, /grid/spacing
 //                                float64[3] (x,y,z order); /cells/<name> float64 [nz][ny][nx]
 //                                for scalars, [nz][ny][nx][3] for vectors (components x,y,z);
-//                                attributes on "/": series attributes + "time" + "step"
-//   <dir>/<prefix>.xdmf          temporal collection, 3DCoRectMesh topology with
+//                                every dataset with "units" and "description" (the cell
+//                                fields' from write()'s `info`, else from air_field_info());
+//                                attributes on "/": series attributes + "description" +
+//                                "time" + "time_units" ("s") + "step"; the cell fields
+//                                chunked (whole z-planes) and compressed at the series' level
+//   <dir>/<prefix>.xdmf          XDMF 3 temporal collection, 3DCoRectMesh topology with
 //                                (nz+1, ny+1, nx+1) nodes, ORIGIN_DXDYDZ geometry (XDMF lists
 //                                both triples slowest axis first: z, y, x), Center="Cell"
 //                                attributes.
@@ -28,13 +32,21 @@ namespace cgdem::io {
 using CellScalars = std::map<std::string, std::vector<double>>;
 using CellVectors = std::map<std::string, std::array<std::vector<double>, 3>>;  // x,y,z components
 
+// Units and description of the cell fields cgdem's air snapshots hold (eps, p, alpha, u:
+// app/run_schedule.cpp), used for a field that write() is given no info for; nullptr for
+// any other name.
+const FieldInfo* air_field_info(const std::string& name);
+
 class GridSnapshotSeries {
  public:
-  GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume = false);
+  // compression: 0..9 (h5_options.hpp).
+  GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume = false,
+                     int compression = kDefaultCompression);
 
-  // Every array has nx*ny*nz values; names must be distinct across scalars and vectors.
+  // Every array has nx*ny*nz values; names must be distinct across scalars and vectors, and
+  // each must have its units and description in `info` or in air_field_info().
   std::string write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
-                    const CellScalars& scalars, const CellVectors& vectors = {});
+                    const CellScalars& scalars, const CellVectors& vectors = {}, const FieldInfos& info = {});
 
   const std::string& xdmf_path() const { return index_.path(); }
   std::string snapshot_path(int64_t step) const;
@@ -53,6 +65,7 @@ class GridSnapshotSeries {
 
   std::string dir_, prefix_;
   Attributes attributes_;
+  int compression_;
   XdmfTimeSeries index_;
 };
 

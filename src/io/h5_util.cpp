@@ -1,35 +1,80 @@
 #include "io/h5_util.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace cgdem::io::h5 {
 namespace {
 
+// The innermost description on HDF5's error stack of this thread (the most specific
+// reason: "truncated file: eof = ...", "wrong B-tree signature"), then the stack is cleared.
+std::string hdf5_reason() {
+  std::vector<std::string> lines;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_DOWNWARD,
+      [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
+        if (e && e->desc && *e->desc) static_cast<std::vector<std::string>*>(out)->push_back(e->desc);
+        return 0;
+      },
+      &lines);
+  H5Eclear2(H5E_DEFAULT);
+  return lines.empty() ? std::string() : lines.back();
+}
+
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
   throw Error("HDF5 file '" + file + "': " + what);
 }
 
+// A failed HDF5 call: our words, then HDF5's reason in parentheses.
+[[noreturn]] void fail_call(const std::string& file, const std::string& what) {
+  const std::string why = hdf5_reason();
+  fail(file, why.empty() ? what : what + " (HDF5: " + why + ")");
+}
+
 hid_t check(hid_t id, const std::string& file, const std::string& what) {
-  if (id < 0) fail(file, what);
+  if (id < 0) fail_call(file, what);
   return id;
 }
 
 void ok(herr_t rc, const std::string& file, const std::string& what) {
-  if (rc < 0) fail(file, what);
+  if (rc < 0) fail_call(file, what);
+}
+
+// Dataset creation properties: contiguous, or chunks of whole rows along the first axis
+// (at most kChunkBytes, at least one row) with shuffle + deflate at `level`.
+Id creation_properties(const std::vector<hsize_t>& dims, size_t value_bytes, int level, const std::string& name,
+                       const std::string& file) {
+  Id dcpl(check(H5Pcreate(H5P_DATASET_CREATE), file, "cannot create property list"), H5Pclose);
+  size_t total = value_bytes;
+  for (hsize_t d : dims) total *= static_cast<size_t>(d);
+  if (level <= 0 || dims.empty() || total < kMinCompressedBytes) return dcpl;
+  const size_t row = total / static_cast<size_t>(dims[0]);
+  std::vector<hsize_t> chunk = dims;
+  chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], kChunkBytes / std::max<size_t>(row, 1)));
+  ok(H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), file, "cannot chunk '" + name + "'");
+  ok(H5Pset_shuffle(dcpl), file, "cannot set the shuffle filter on '" + name + "'");
+  ok(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), file, "cannot set deflate on '" + name + "'");
+  return dcpl;
 }
 
 template <class T>
 void write_any(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const T* data,
-               hid_t type, const std::string& file) {
+               hid_t type, const std::string& file, const Meta& meta, int level) {
+  if (meta.units.empty() || meta.description.empty())
+    fail(file, "dataset '" + name + "' needs a unit and a description");
+  check_level(level, file);
   Id space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), file,
                  "cannot create dataspace for '" + name + "'"),
            H5Sclose);
-  Id set(check(H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), file,
+  Id dcpl = creation_properties(dims, sizeof(T), level, name, file);
+  Id set(check(H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), file,
                "cannot create dataset '" + name + "'"),
          H5Dclose);
   hsize_t n = 1;
   for (hsize_t d : dims) n *= d;
   if (n > 0) ok(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), file, "cannot write '" + name + "'");
+  write_attribute(set, "units", meta.units, file);
+  write_attribute(set, "description", meta.description, file);
 }
 
 template <class T>
@@ -60,6 +105,22 @@ void write_scalar_attribute(hid_t loc, const std::string& key, T value, hid_t ty
 
 }  // namespace
 
+Quiet::Quiet() {
+  saved_ = H5Eget_auto2(H5E_DEFAULT, &func_, &data_) >= 0;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+Quiet::~Quiet() {
+  if (saved_) H5Eset_auto2(H5E_DEFAULT, func_, data_);
+}
+
+void check_level(int level, const std::string& file) {
+  if (level < 0 || level > 9) fail(file, "compression level must be 0..9, got " + std::to_string(level));
+  if (level == 0) return;
+  static const bool have = H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0 && H5Zfilter_avail(H5Z_FILTER_SHUFFLE) > 0;
+  if (!have) fail(file, "this HDF5 library has no deflate/shuffle filter: set output.compression = 0");
+}
+
 Id& Id::operator=(Id&& o) noexcept {
   if (this != &o) {
     reset();
@@ -78,20 +139,29 @@ void Id::reset() {
 void Id::close_checked(const std::string& what) {
   hid_t id = id_;
   id_ = H5I_INVALID_HID;
-  if (id >= 0 && close_ && close_(id) < 0) throw Error("HDF5: closing " + what + " failed");
+  if (id >= 0 && close_ && close_(id) < 0) {
+    const std::string why = hdf5_reason();
+    throw Error("HDF5: closing " + what + " failed" + (why.empty() ? "" : " (HDF5: " + why + ")"));
+  }
 }
 
 Id create_file(const std::string& path, const std::string& name) {
+  Quiet quiet;
   Id fapl(check(H5Pcreate(H5P_FILE_ACCESS), name, "cannot create property list"), H5Pclose);
   ok(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18), name, "cannot set format version");
   return Id(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), name, "cannot create file"), H5Fclose);
 }
 
 Id open_file(const std::string& path) {
+  Quiet quiet;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error("HDF5 file '" + path + "' does not exist");
-  if (H5Fis_hdf5(path.c_str()) <= 0) fail(path, "not an HDF5 file");
-  return Id(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), path, "cannot open"), H5Fclose);
+  const htri_t is_h5 = H5Fis_hdf5(path.c_str());
+  if (is_h5 == 0) fail(path, "not an HDF5 file (no HDF5 signature)");
+  if (is_h5 < 0) fail_call(path, "cannot be read as HDF5");
+  return Id(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), path,
+                  "cannot open (truncated or damaged?)"),
+            H5Fclose);
 }
 
 Id create_group(hid_t loc, const std::string& name, const std::string& file) {
@@ -113,16 +183,16 @@ bool exists(hid_t loc, const std::string& path) {
 }
 
 void write(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const double* data,
-           const std::string& file) {
-  write_any(loc, name, dims, data, H5T_NATIVE_DOUBLE, file);
+           const std::string& file, const Meta& meta, int level) {
+  write_any(loc, name, dims, data, H5T_NATIVE_DOUBLE, file, meta, level);
 }
 void write(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const int64_t* data,
-           const std::string& file) {
-  write_any(loc, name, dims, data, H5T_NATIVE_INT64, file);
+           const std::string& file, const Meta& meta, int level) {
+  write_any(loc, name, dims, data, H5T_NATIVE_INT64, file, meta, level);
 }
 void write(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const int* data,
-           const std::string& file) {
-  write_any(loc, name, dims, data, H5T_NATIVE_INT, file);
+           const std::string& file, const Meta& meta, int level) {
+  write_any(loc, name, dims, data, H5T_NATIVE_INT, file, meta, level);
 }
 
 std::vector<double> read_double(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,

@@ -4,22 +4,25 @@
 
 #include "io/atomic_file.hpp"
 #include "io/h5_util.hpp"
+#include "io/particle_h5.hpp"
 
 namespace cgdem::io {
 namespace {
 
-const char* const kReserved[] = {"velocity", "omega", "diameter", "id", "species"};
+const char* const kReserved[] = {"velocity", "omega", "position", "diameter", "id", "species"};
 
 }  // namespace
 
-SnapshotSeries::SnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume)
+SnapshotSeries::SnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
+                               int compression)
     : dir_(std::move(dir)),
       prefix_(std::move(prefix)),
       attributes_(std::move(attributes)),
+      compression_(compression),
       index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
   check_series_name(prefix_, "snapshot prefix");
-  for (const char* k : {"time", "step"})
-    if (attributes_.count(k)) throw Error(std::string("snapshot attribute '") + k + "' is reserved");
+  detail::check_reserved_attributes(attributes_, "snapshot");
+  h5::check_level(compression_, dir_ + "/" + prefix_ + "_*.h5");
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
@@ -31,7 +34,9 @@ std::string SnapshotSeries::snapshot_path(int64_t step) const {
   return dir_ + "/" + snapshot_file_name(prefix_, step);
 }
 
-std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable& table, const ScalarFields& extra) {
+std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable& table, const ScalarFields& extra,
+                                  const FieldInfos& info) {
+  h5::Quiet quiet;
   const std::string path = snapshot_path(step);
   table.validate(path);
   Entry e{step, time, table.size(), table.has_velocity(), table.has_omega(), {}};
@@ -42,17 +47,18 @@ std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable
     if (values.size() != table.size())
       throw Error(path + ": field '" + name + "' has " + std::to_string(values.size()) + " values for " +
                   std::to_string(table.size()) + " particles");
+    if (!info.count(name)) throw Error(path + ": field '" + name + "' has no units and description");
     e.fields.push_back(name);
   }
   AtomicTarget target(path);
   {
     h5::Id file = h5::create_file(target.tmp_path(), path);
-    for (const auto& [k, v] : attributes_) h5::write_attribute(file, k, v, path);
-    h5::write_attribute(file, "time", time, path);
-    h5::write_attribute(file, "step", step, path);
-    detail::write_particle_group(file, table, path);
+    detail::write_file_attributes(file, attributes_, "cgdem particle snapshot: one row per parcel, SI units",
+                                  Instant{time, step}, path);
+    detail::write_particle_group(file, table, path, compression_);
     h5::Id g = h5::create_group(file, "fields", path);
-    for (const auto& [name, values] : extra) h5::write(g, name, {values.size()}, values.data(), path);
+    for (const auto& [name, values] : extra)
+      h5::write(g, name, {values.size()}, values.data(), path, info.at(name), compression_);
     g.reset();
     file.close_checked("'" + path + "'");
   }
@@ -63,6 +69,7 @@ std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable
 }
 
 SnapshotSeries::Entry SnapshotSeries::read_entry(int64_t step) const {
+  h5::Quiet quiet;
   const std::string path = snapshot_path(step);
   h5::Id file = h5::open_file(path);
   Entry e;
@@ -72,6 +79,7 @@ SnapshotSeries::Entry SnapshotSeries::read_entry(int64_t step) const {
   e.n = h5::read_double(file, "particles/d", dims, path).size();
   e.has_v = h5::exists(file, "particles/v");
   e.has_omega = h5::exists(file, "particles/omega");
+  e.has_vertex = h5::exists(file, "particles/vertex");
   if (h5::exists(file, "fields")) {
     h5::Id g(H5Gopen2(file, "fields", H5P_DEFAULT), H5Gclose);
     e.fields = h5::members(g, path);
@@ -84,13 +92,20 @@ std::string SnapshotSeries::render(const Entry& e) const {
   const std::string n = std::to_string(e.n), n3 = n + " 3";
   std::string g = "   <Grid Name=\"step_" + std::to_string(e.step) + "\" GridType=\"Uniform\">\n";
   g += "    <Time Value=\"" + xdmf::number(e.time) + "\"/>\n";
-  g += "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n + "\" NodesPerElement=\"1\"/>\n";
+  // The connectivity makes every reader build one vertex cell per parcel (without it the
+  // Xdmf3 readers of ParaView make none, and meshio needs a DataItem here).
+  g += "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n + "\" NodesPerElement=\"1\"";
+  if (e.has_vertex)
+    g += ">\n     " + xdmf::hdf_item(n + " 1", "Int", 8, file, "/particles/vertex") + "\n    </Topology>\n";
+  else
+    g += "/>\n";
   g += "    <Geometry GeometryType=\"XYZ\">\n     " + xdmf::hdf_item(n3, "Float", 8, file, "/particles/x") +
        "\n    </Geometry>\n";
   if (e.has_v)
     g += xdmf::attribute("velocity", "Vector", "Node", xdmf::hdf_item(n3, "Float", 8, file, "/particles/v"));
   if (e.has_omega)
     g += xdmf::attribute("omega", "Vector", "Node", xdmf::hdf_item(n3, "Float", 8, file, "/particles/omega"));
+  g += xdmf::attribute("position", "Vector", "Node", xdmf::hdf_item(n3, "Float", 8, file, "/particles/x"));
   g += xdmf::attribute("diameter", "Scalar", "Node", xdmf::hdf_item(n, "Float", 8, file, "/particles/d"));
   g += xdmf::attribute("id", "Scalar", "Node", xdmf::hdf_item(n, "Int", 8, file, "/particles/id"));
   g += xdmf::attribute("species", "Scalar", "Node", xdmf::hdf_item(n, "Int", 4, file, "/particles/species"));

@@ -24,7 +24,7 @@ std::string XdmfTimeSeries::text() const {
   std::string out =
       "<?xml version=\"1.0\" ?>\n"
       "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-      "<Xdmf Version=\"2.0\">\n"
+      "<Xdmf Version=\"3.0\">\n"
       " <Domain>\n"
       "  <Grid Name=\"" + xdmf::escape(name_) + "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (const auto& kv : grids_) out += kv.second;

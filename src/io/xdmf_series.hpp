@@ -1,14 +1,18 @@
-// XdmfTimeSeries: the XDMF (version 2) index of a series of HDF5 snapshots, one temporal
-// collection that ParaView opens directly ("Xdmf Reader" / "Xdmf3 Reader").
+// XdmfTimeSeries: the XDMF 3 index of a series of HDF5 snapshots, one temporal collection
+// that ParaView ("XDMF Reader", "Xdmf3 Reader S", "Xdmf3 Reader T"), meshio
+// (meshio.xdmf.TimeSeriesReader) and h5py-based scripts open directly.
 //
-//   <Xdmf><Domain><Grid GridType="Collection" CollectionType="Temporal">
-//     <Grid Name="step_000010" GridType="Uniform"> <Time Value="..."/> ... </Grid>  (one per snapshot)
+//   <Xdmf Version="3.0"><Domain><Grid GridType="Collection" CollectionType="Temporal">
+//     <Grid Name="step_10" GridType="Uniform"> <Time Value="..."/> ... </Grid>  (one per snapshot)
 //   </Grid></Domain></Xdmf>
 //
-// The per-snapshot <Grid> elements are rendered by the series (particles or mesh) and kept
-// by step. Time only moves forward: setting step s drops every entry with a later step
-// (after a restart those belong to the abandoned run). The index file is rewritten
-// atomically after every change, so it always lists exactly the committed snapshots.
+// The elements are those of XDMF 2 and 3 alike (TopologyType, GeometryType, NumberType,
+// HDF DataItems "file.h5:/path" relative to the index), so a reader of either version
+// accepts it. The per-snapshot <Grid> elements are rendered by the series (particles or
+// mesh) and kept by step. Time only moves forward: setting step s drops every entry with
+// a later step (after a restart those belong to the abandoned run). The index file is
+// rewritten atomically after every change, so it always lists exactly the committed
+// snapshots.
 #pragma once
 #include <cstdint>
 #include <map>

@@ -39,12 +39,18 @@ TEST(SnapshotSeries, FilesAndIndexAreConsistent) {
   for (int k = 0; k < 3; ++k) {
     ParticleTable t = cloud(5 + k, k < 2);
     ScalarFields extra = {{"coordination", std::vector<double>(t.size(), 3.0 + k)}, {"speed", t.d}};
-    const std::string p = series.write(10 * k, times[k], t, extra);
+    const FieldInfos info = {{"coordination", {"1", "contacts per parcel"}}, {"speed", {"m/s", "parcel speed"}}};
+    const std::string p = series.write(10 * k, times[k], t, extra, info);
     EXPECT_EQ(p, dir + "/particles_0000" + std::to_string(k) + "0.h5");
     Attributes back;
     ParticleTable u = read_particles_h5(p, &back);
     EXPECT_TRUE(u.x == t.x && u.v == t.v && u.omega == t.omega && u.d == t.d && u.id == t.id);
-    EXPECT_EQ(back, attrs);  // numeric "time"/"step" are not string attributes
+    // The series' strings, the writer's own ones; numeric "time"/"step" are not strings.
+    for (const auto& [key, value] : attrs) EXPECT_EQ(back[key], value) << key;
+    EXPECT_EQ(back["time_units"], "s");
+    EXPECT_FALSE(back["description"].empty());
+    EXPECT_FALSE(back["cgdem_revision"].empty());
+    EXPECT_EQ(back.size(), attrs.size() + 3);
   }
   EXPECT_EQ(count_temporaries(dir), 0);
 
@@ -58,14 +64,19 @@ TEST(SnapshotSeries, FilesAndIndexAreConsistent) {
     EXPECT_EQ(g.all("Topology")[0]->attr.at("TopologyType"), "Polyvertex");
     EXPECT_EQ(g.all("Topology")[0]->attr.at("NumberOfElements"), std::to_string(5 + k));
     EXPECT_EQ(g.all("Geometry")[0]->attr.at("GeometryType"), "XYZ");
+    const auto& topo = *g.all("Topology")[0];
+    ASSERT_EQ(topo.all("DataItem").size(), 1u);  // explicit connectivity, one vertex per parcel
+    EXPECT_EQ(topo.all("DataItem")[0]->attr.at("Dimensions"), std::to_string(5 + k) + " 1");
     std::vector<std::string> names;
     for (const XmlNode* a : g.all("Attribute")) names.push_back(a->attr.at("Name"));
-    std::vector<std::string> want = {"velocity", "omega", "diameter", "id", "species", "coordination", "speed"};
+    std::vector<std::string> want = {"velocity", "omega", "position", "diameter", "id", "species", "coordination",
+                                     "speed"};
     if (k == 2) want.erase(want.begin());  // no velocity given at the last step
     EXPECT_EQ(names, want);
   }
-  std::printf("[ info ] %d HDF DataItems checked against their datasets (expected %d)\n", items, 3 * 8 - 1);
-  EXPECT_EQ(items, 3 * 8 - 1);
+  // Per snapshot: geometry, connectivity, 8 attributes (7 at the last step: no velocity).
+  std::printf("[ info ] %d HDF DataItems checked against their datasets (expected %d)\n", items, 3 * 10 - 1);
+  EXPECT_EQ(items, 3 * 10 - 1);
 
   // The extra fields are stored under /fields.
   h5::Id f = h5::open_file(series.snapshot_path(10));
@@ -78,7 +89,7 @@ TEST(SnapshotSeries, ResumeReindexesAndDropsLaterSteps) {
   const std::string dir = scratch_dir();
   {
     SnapshotSeries s(dir, "p", {});
-    for (int k = 0; k < 4; ++k) s.write(100 * k, 0.1 * k, cloud(3, true), {{"f", {1, 2, 3}}});
+    for (int k = 0; k < 4; ++k) s.write(100 * k, 0.1 * k, cloud(3, true), {{"f", {1, 2, 3}}}, {{"f", {"1", "f"}}});
   }
   SnapshotSeries again(dir, "p", {}, /*resume=*/true);
   EXPECT_EQ(again.steps(), (std::vector<int64_t>{0, 100, 200, 300}));
@@ -95,9 +106,13 @@ TEST(SnapshotSeries, ResumeReindexesAndDropsLaterSteps) {
 TEST(SnapshotSeries, RejectsBadInput) {
   const std::string dir = scratch_dir();
   SnapshotSeries s(dir, "p", {});
-  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"f", {1, 2}}}), Error);        // wrong size
-  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"id", {1, 2, 3}}}), Error);    // reserved
-  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"a/b", {1, 2, 3}}}), Error);   // path separator
+  const FieldInfos info = {{"f", {"1", "f"}}, {"id", {"1", "id"}}, {"a/b", {"1", "a/b"}}};
+  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"f", {1, 2}}}, info), Error);        // wrong size
+  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"id", {1, 2, 3}}}, info), Error);    // reserved
+  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"a/b", {1, 2, 3}}}, info), Error);   // path separator
+  EXPECT_THROW(s.write(0, 0, cloud(3, true), {{"g", {1, 2, 3}}}, info), Error);     // no units
+  EXPECT_THROW(SnapshotSeries(dir, "p", {}, false, 10), Error);                     // level > 9
+  EXPECT_THROW(SnapshotSeries(dir, "p", {{"description", "x"}}), Error);
   EXPECT_THROW(s.write(-1, 0, cloud(3, true)), Error);
   EXPECT_THROW(SnapshotSeries(dir, "a/b", {}), Error);
   EXPECT_THROW(SnapshotSeries(dir, "p", {{"time", "x"}}), Error);
@@ -119,9 +134,10 @@ TEST(GridSnapshotSeries, CellFieldsAndIndex) {
         vec["u_f"][0][c] = i, vec["u_f"][1][c] = j, vec["u_f"][2][c] = k;
       }
   GridSnapshotSeries g(dir, "air", {{"git_revision", "abc"}});
+  const FieldInfos info = {{"eps_f", {"1", "test"}}, {"u_f", {"m/s", "test"}}};
   const Vec3 origin{-1, 0.5, 2}, h{0.1, 0.2, 0.3};
-  g.write(0, 0.0, nx, ny, nz, origin, h, sc, vec);
-  g.write(5, 0.25, nx, ny, nz, origin, h, sc, vec);
+  g.write(0, 0.0, nx, ny, nz, origin, h, sc, vec, info);
+  g.write(5, 0.25, nx, ny, nz, origin, h, sc, vec, info);
 
   h5::Id f = h5::open_file(g.snapshot_path(5));
   std::vector<hsize_t> dims;
@@ -156,6 +172,7 @@ TEST(GridSnapshotSeries, CellFieldsAndIndex) {
   EXPECT_EQ(slurp(again.xdmf_path()), slurp(g.xdmf_path()));
   EXPECT_THROW(g.write(6, 0.3, nx, ny, nz, origin, h, {{"p", std::vector<double>(nc - 1)}}), Error);
   EXPECT_THROW(g.write(6, 0.3, 0, ny, nz, origin, h, {}), Error);
-  EXPECT_THROW(g.write(6, 0.3, nx, ny, nz, origin, h, {{"u_f", sc["p"]}}, vec), Error);  // duplicate
+  EXPECT_THROW(g.write(6, 0.3, nx, ny, nz, origin, h, {{"u_f", sc["p"]}}, vec, info), Error);  // duplicate
+  EXPECT_THROW(g.write(6, 0.3, nx, ny, nz, origin, h, {{"q", sc["p"]}}), Error);  // no units for "q"
   EXPECT_EQ(count_temporaries(dir), 0);
 }

@@ -1,6 +1,7 @@
 // Checks an XDMF index against the HDF5 files it references: well-formed XML, a temporal
 // collection, and every HDF DataItem names an existing file and dataset whose shape equals
-// the declared Dimensions. Returns the parsed tree for further checks.
+// the declared Dimensions, whose type is the declared NumberType and Precision, and which
+// has its "units" and "description" attributes. Returns the parsed tree for further checks.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -45,6 +46,13 @@ inline XmlNode check_xdmf(const std::string& xdmf_path, int& items) {
     std::vector<hsize_t> dims;
     h5::read_double(f, set.substr(1), dims, file);
     EXPECT_EQ(dims, parse_dims(item->attr.at("Dimensions"))) << text;
+    h5::Id ds(H5Dopen2(f, set.c_str(), H5P_DEFAULT), H5Dclose);
+    h5::Id type(H5Dget_type(ds), H5Tclose);
+    const std::string number = item->attr.at("NumberType");
+    EXPECT_EQ(H5Tget_class(type), number == "Float" ? H5T_FLOAT : H5T_INTEGER) << text;
+    EXPECT_EQ(std::to_string(H5Tget_size(type)), item->attr.at("Precision")) << text;
+    const auto meta = h5::read_string_attributes(ds, file);
+    EXPECT_TRUE(meta.count("units") && meta.count("description")) << text << ": no units/description";
     ++items;
   }
   return root;
