@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/config.hpp"
+#include "io/h5_options.hpp"
 #include "particles/insertion.hpp"
 #include "solvers/dem/dem_solver.hpp"
 
@@ -22,6 +23,7 @@ struct OutputSpec {
   double progress_interval = 10;    // [s] wall clock, when not on a terminal
   double max_speed = 50;            // [m/s] a faster particle stops the run (blow-up)
   double checkpoint_interval = 1e-2;  // [s] simulated, between checkpoints (checkpoint.bin)
+  int compression = io::kDefaultCompression;  // deflate level 0..9 of the HDF5 snapshots
 };
 
 struct DemCase {

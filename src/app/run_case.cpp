@@ -99,9 +99,10 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   fmt::print("shortest collision time {:.4g} s ({:.1f} steps); set-up {:.2f} s\n", dem->min_collision_time(),
              dem->min_collision_time() / c.dem.dt, setup_clock.seconds());
 
-  io::SnapshotSeries snapshots(c.output.dir, "particles", attrs, restart);
+  io::SnapshotSeries snapshots(c.output.dir, "particles", attrs, restart, c.output.compression);
   std::unique_ptr<io::GridSnapshotSeries> air_snapshots;
-  if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
+  if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart,
+                                                                        c.output.compression);
   // Time series: on a restart the rows after the checkpoint's time are dropped and the
   // file continues; otherwise it starts afresh.
   const std::string series_comment = "case " + info.case_file;
@@ -161,7 +162,8 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     io::ParticleTable t = to_table(dem->particles());
     snapshots.write(dem->steps(), dem->time(), t);
     if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), air, fluid->ibm().alpha_cell);
-    io::write_particles_h5(last_good, t, attrs);  // atomic: always a consistent state
+    // atomic: always a consistent state
+    io::write_particles_h5(last_good, t, attrs, c.output.compression, io::Instant{dem->time(), dem->steps()});
   };
 
   auto write_checkpoint_now = [&]() {

@@ -366,8 +366,10 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     return open_series(c.output.dir, name, hdr, series_comment, restart, dem->time());
   };
   together(R, "output files", true, [&] {
-    snapshots = std::make_unique<io::SnapshotSeries>(c.output.dir, "particles", attrs, restart);
-    if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart);
+    snapshots =
+        std::make_unique<io::SnapshotSeries>(c.output.dir, "particles", attrs, restart, c.output.compression);
+    if (with_air) air_snapshots = std::make_unique<io::GridSnapshotSeries>(c.output.dir, "air", attrs, restart,
+                                                                          c.output.compression);
     energy = open_csv("energy.csv", energy_csv_header());
     if (diag_spec.enabled) diag_csv = open_csv("diagnostics.csv", diag.csv_header());
     if (diag_spec.enabled) surface_csv = open_csv("shoe_surface.csv", diag.surface_header());
@@ -474,7 +476,8 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
       const io::ParticleTable t = to_table(all);
       snapshots->write(dem->steps(), dem->time(), t);
       if (with_air) write_air_snapshot(*air_snapshots, dem->steps(), whole, alpha);
-      io::write_particles_h5(last_good, t, attrs);
+      io::write_particles_h5(last_good, t, attrs, c.output.compression,
+                             io::Instant{dem->time(), dem->steps()});
     });
   };
   auto write_checkpoint_to = [&](const std::string& path) {

@@ -1,0 +1,11 @@
+# The run folder's HDF5 and XDMF files describe themselves and open in every reader
+# (tests/cli/h5_outputs.py: h5py, xml.etree, meshio when installed), and damaged .h5 inputs
+# stop with one clear line. Needs Debian's python3 with h5py (scripts/install-deps.sh).
+find_program(CGDEM_SYSTEM_PYTHON3 python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(CGDEM_SYSTEM_PYTHON3)
+  add_test(NAME cli.h5_outputs_describe_themselves
+           COMMAND ${CGDEM_SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/tests/cli/h5_outputs.py $<TARGET_FILE:cgdem>
+                   ${PROJECT_SOURCE_DIR}/tests/cli/base.toml ${PROJECT_BINARY_DIR}/cli_out/h5_outputs)
+  set_tests_properties(cli.h5_outputs_describe_themselves PROPERTIES LABELS cli ENVIRONMENT "OMP_NUM_THREADS=1"
+                       PASS_REGULAR_EXPRESSION "all checks passed")
+endif()
