@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "io/atomic_file.hpp"
+#include "io/metrics.hpp"
 #include "scaling/plot_script.hpp"
 
 namespace cgdem::scaling {
@@ -78,8 +79,8 @@ std::string label_columns(const Comparison& c, const std::string& prefix, const 
 std::string metrics_csv(const Comparison& c) {
   std::string s = header_comment(c) +
                   fmt::format(
-                      "# diff = value - value of {0}; rel_diff = diff / |value of {0}|; an empty field: missing "
-                      "(NaN or not written by the run)\n",
+                      "# diff = value - value of {0}; rel_diff = diff / |value of {0}|; an empty field: missing, "
+                      "i.e. not computed (the run did not write the metric: e.g. pressures without air) or NaN\n",
                       c.runs[0].label);
   s += fmt::format("metric,unit{}{}{}\n", label_columns(c, "", ""), label_columns(c, "diff:", "", 1),
                    label_columns(c, "rel_diff:", "", 1));
@@ -169,8 +170,9 @@ std::string runs_section(const Comparison& c) {
 std::string metrics_section(const Comparison& c) {
   const std::string ref = md_cell(c.runs[0].label);
   std::string md = fmt::format(
-      "## Metrics (metrics.csv)\n\nΔ = value − value of {0}; relative = Δ / |value of {0}|. {1}: missing (NaN, or not "
-      "written by the run; a relative difference from 0 is missing too).\n\n",
+      "## Metrics (metrics.csv)\n\nΔ = value − value of {0}; relative = Δ / |value of {0}|. \"not computed\": the run "
+      "did not write the metric (cgdem run leaves out what it cannot compute, e.g. the pressures of a run without "
+      "air); {1}: NaN, or a difference with a value that is missing (a relative difference from 0 is missing too).\n\n",
       ref, kMissing);
   std::vector<std::string> head{"metric", "unit"};
   for (const auto& r : c.runs) head.push_back(md_cell(r.label));
@@ -181,7 +183,8 @@ std::string metrics_section(const Comparison& c) {
   md += table_head(head);
   for (const auto& m : c.metrics) {
     md += fmt::format("| {} | {} |", m.name, unit_or_dash(m.unit));
-    for (double v : m.value) md += fmt::format(" {} |", md_num(v));
+    for (size_t i = 0; i < c.runs.size(); ++i)
+      md += fmt::format(" {} |", io::has_metric(c.runs[i].metrics, m.name) ? md_num(m.value[i]) : "not computed");
     for (size_t i = 1; i < c.runs.size(); ++i)
       md += fmt::format(" {} | {} |", md_diff(m.abs_diff[i]), md_pct(m.rel_diff[i]));
     md += "\n";

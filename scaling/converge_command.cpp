@@ -138,6 +138,7 @@ struct MetricStudy {
   bool has_exact = false;
   double exact = 0;
   PowerFit fit;
+  std::vector<std::string> not_computed;  // levels whose run did not write the metric (io::may_be_left_out)
 };
 
 std::string num(double x, const char* f = "{:.6g}") { return std::isfinite(x) ? fmt::format(fmt::runtime(f), x) : "nan"; }
@@ -153,8 +154,10 @@ std::vector<Row> rows(const MetricStudy& m) {
   for (size_t k = n; k-- > 0;) {  // k: index fine-first; printed coarse to fine
     Row r;
     r.label = m.labels[k], r.h = num(m.levels[k].h), r.f = num(m.levels[k].f, "{:.10g}");
+    if (std::count(m.not_computed.begin(), m.not_computed.end(), r.label)) r.f = "not computed";
     if (k + 1 < n) {
-      r.diff = num(m.levels[k].f - m.levels[k + 1].f, "{:.4e}");
+      if (std::isfinite(m.levels[k].f) && std::isfinite(m.levels[k + 1].f))
+        r.diff = num(m.levels[k].f - m.levels[k + 1].f, "{:.4e}");
       r.r = num(m.levels[k + 1].h / m.levels[k].h, "{:.4f}");
     }
     if (k < m.triples.size()) {
@@ -174,6 +177,10 @@ std::vector<Row> rows(const MetricStudy& m) {
 
 // The one-line verdict of a metric (finest triple), the line the CLI tests read.
 std::string summary(const MetricStudy& m) {
+  if (!m.not_computed.empty())
+    return fmt::format("converge: {}: not computed at {} (the run wrote no such metric: cgdem run leaves out what it "
+                       "cannot compute, e.g. the pressures of a run without air); no order",
+                       m.name, fmt::join(m.not_computed, ", "));
   if (m.triples.empty()) return fmt::format("converge: {}: fewer than 3 levels", m.name);
   const TripleResult& t = m.triples.front();
   const std::string which = fmt::format("finest triple {}, {}, {}", m.labels[2], m.labels[1], m.labels[0]);
@@ -263,7 +270,9 @@ int ConvergeCommand::run() const {
       throw Error(fmt::format("--h-from {}: h = {:g} at {} is not a positive number", o.h_from, run.h, label));
     for (const auto& r : runs)
       if (r.h == run.h) throw Error(fmt::format("--h-from {}: {} and {} have the same h = {:g}", o.h_from, r.label, label, run.h));
-    for (const auto& name : o.metrics) io::metric(run.metrics, name, (fs::path(out) / label / "metrics.csv").string());
+    for (const auto& name : o.metrics)  // a misspelt name stops here; one cgdem may leave out is "not computed"
+      if (!io::may_be_left_out(name) || io::has_metric(run.metrics, name))
+        io::metric(run.metrics, name, (fs::path(out) / label / "metrics.csv").string());
     runs.push_back(std::move(run));
   }
 
@@ -276,7 +285,13 @@ int ConvergeCommand::run() const {
     m.name = name;
     for (size_t i : order) {
       m.labels.push_back(runs[i].label);
-      m.levels.push_back({runs[i].h, io::metric(runs[i].metrics, name, runs[i].label)});
+      const bool computed = io::has_metric(runs[i].metrics, name);
+      if (!computed) m.not_computed.push_back(runs[i].label);
+      m.levels.push_back({runs[i].h, computed ? io::metric(runs[i].metrics, name, runs[i].label) : NAN});
+    }
+    if (!m.not_computed.empty()) {  // nothing to analyse: the table shows which levels lack it
+      studies.push_back(std::move(m));
+      continue;
     }
     try {
       m.triples = analyse_sequence(m.levels);

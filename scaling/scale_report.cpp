@@ -80,14 +80,16 @@ std::string budget_section(const Study& s) {
 std::string observables_section(const Study& s) {
   std::string t = "## Observables\n\n"
                   "Values side by side (SI units; positions from the domain's lower corner, profile columns "
-                  "of " + num(s.profile.bin) + " m):\n\n| observable |";
+                  "of " + num(s.profile.bin) + " m; \"not computed\": the run has no such value, e.g. the pressures "
+                  "of a run without air):\n\n| observable |";
   for (const auto& r : s.runs) t += " " + r.label + " |";
   t += "\n|---|";
   for (size_t r = 0; r < s.runs.size(); ++r) t += "---|";
   t += "\n";
   for (const auto& [name, v1] : s.observables[0].scalars) {
     t += "| " + name + " |";
-    for (const auto& o : s.observables) t += " " + (o.scalars.count(name) ? num(o.scalars.at(name), 4) : "-") + " |";
+    for (const auto& o : s.observables)
+      t += " " + (o.scalars.count(name) ? num(o.scalars.at(name), 4) : std::string("not computed")) + " |";
     t += "\n";
   }
   t += "\nDeviation from l = 1 and verdict:\n\n| run | observable | metric | deviation | threshold | verdict |\n"

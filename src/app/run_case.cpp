@@ -247,7 +247,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
 
   const double wall = progress.seconds();
   io::write_metrics((out / "metrics.csv").string(),
-                    run_metrics(c.output.dir, *dem, diag_spec.enabled, diag.front_impact()));
+                    run_metrics(c.output.dir, *dem, diag_spec.enabled, diag.front_impact(), DieRun{diag_spec.die, with_air}));
   EnergyBudget e = dem->energy();
   fmt::print("\n{}", dem->timers().table("per-phase time (DEM)"));
   if (with_air) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -25,9 +26,18 @@ Metrics read_metrics(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error("cannot read " + path);
   std::string line;
-  if (!std::getline(in, line) || line != "name,value") throw Error(path + ": expected the header 'name,value'");
+  int n = 0;
+  auto next = [&] {  // the next line that is not a '#' comment
+    while (std::getline(in, line)) {
+      ++n;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (line.empty() || line[0] != '#') return true;
+    }
+    return false;
+  };
+  if (!next() || line != "name,value") throw Error(path + ": expected the header 'name,value'");
   Metrics m;
-  for (int n = 2; std::getline(in, line); ++n) {
+  while (next()) {
     if (line.empty()) continue;
     const auto comma = line.find(',');
     if (comma == std::string::npos || comma == 0)
@@ -48,6 +58,21 @@ double metric(const Metrics& m, const std::string& name, const std::string& sour
     names += (names.empty() ? "" : ", ") + k;
   }
   throw Error(fmt::format("{}: no metric '{}' (it has: {})", source, name, names.empty() ? "none" : names));
+}
+
+bool has_metric(const Metrics& m, const std::string& name) {
+  return std::any_of(m.begin(), m.end(), [&](const auto& kv) { return kv.first == name; });
+}
+
+bool may_be_left_out(const std::string& name) {
+  auto ends = [&](const char* s) {
+    const std::string e(s);
+    return name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
+  };
+  auto starts = [&](const char* s) { return name.rfind(s, 0) == 0; };
+  if (starts("p_")) return ends("_peak_Pa") || ends("_peak_time_s") || ends("_mean_Pa");
+  if (starts("bubble_") || starts("transfer_rate_")) return ends("_peak_m3") || ends("_peak_time_s") || ends("_peak_kg_s");
+  return false;
 }
 
 }  // namespace cgdem::io

@@ -593,7 +593,7 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
     if (diag_spec.enabled) write_impacts(c.output.dir, diag);
     io::write_metrics((out / "metrics.csv").string(),
                       run_metrics(c.output.dir, dem->time(), present, e, removed, diag_spec.enabled,
-                                  diag.front_impact()));
+                                  diag.front_impact(), DieRun{diag_spec.die, with_air}));
     fmt::print("\n{}", dem->timers().table("per-phase time (DEM, rank 0)"));
     fmt::print("{}", dist->timers().table("inside 'neighbour lists': exchanges (rank 0)"));
     if (with_air) {
