@@ -6,10 +6,12 @@
 //   * a single Gaussian pulse in red noise gives no significant peak (the Case 1-3 shape);
 //   * pure AR(1) noise exceeds the 95 % level in about 5 % of the bins over many seeds.
 // Every test prints its figures; the tolerances are stated at each check.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "scaling/spectrum.hpp"
 #include "scaling/spectrum_report.hpp"
 #include "scaling/spectrum_significance.hpp"
+#include "tests/io/scratch.hpp"
 
 namespace cgdem::scaling {
 namespace {
@@ -303,6 +306,47 @@ TEST(RedNoiseTest, BadArgumentsAreClearErrors) {
   } catch (const Error& e) {
     std::printf("error: %s\n", e.what());
     EXPECT_NE(std::string(e.what()).find("--confidence: 1.5"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace cgdem::scaling
+
+namespace cgdem::scaling {
+namespace {
+
+// The pressure spectra section of `cgdem scale` on two runs whose cell B holds only a
+// transient (a 20 ms pulse on weak red noise) and whose cell A adds a sine at 650 Hz: B
+// reads "no significant peak" in both runs (no deviation computed from it), A is found.
+TEST(RedNoiseTest, ScaleSectionSaysNoSignificantPeak) {
+  const std::string dir = io::test::scratch_dir();
+  std::vector<std::string> dirs;
+  for (int r = 0; r < 2; ++r) {
+    const std::string d = dir + "/l=" + std::to_string(r + 1);
+    std::filesystem::create_directories(d);
+    const std::vector<double> pulse = pulse_in_noise(15.0, 0.02, 40 + r);
+    std::string s = "# synthetic run\nt,mass_in_die,transfer_rate,p_A,p_B\n";
+    for (size_t i = 0; i < pulse.size(); ++i) {
+      const double t = i * 1e-4;
+      s += fmt::format("{:.6f},0,0,{:.17g},{:.17g}\n", t, pulse[i] + 0.3 * std::sin(2 * std::numbers::pi * 650 * t),
+                       pulse[i]);
+    }
+    io::test::spit(d + "/diagnostics.csv", s);
+    dirs.push_back(d);
+  }
+  const PressureSpectra p = analyse_pressure_spectra(dirs, {"l=1", "l=2"}, 0.0);
+  ASSERT_EQ(p.not_applicable, "");
+  const auto dev = spectrum_deviations(p.analysis, "l=1");
+  const std::string md = pressure_spectra_section(p, dev, 0.0, "l=1");
+  for (const auto& d : dev)
+    std::printf("scale section %s %s: f %.6g Hz, variance deviation %.3g\n", d.run.c_str(), d.cell.c_str(), d.f,
+                d.variance_dev);
+  EXPECT_NE(md.find("| l=1 | B | 10 | no significant peak |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| l=2 | B | 10 | no significant peak |"), std::string::npos) << md;
+  for (const auto& d : dev) {
+    if (d.cell == "A") EXPECT_NEAR(d.f_interp, 650.0, 1e4 / 512);  // within a bin
+    if (d.cell == "B") EXPECT_TRUE(std::isnan(d.f) && std::isnan(d.band_power_dev));
+    if (d.run == "l=2") EXPECT_TRUE(std::isfinite(d.variance_dev));
   }
 }
 
