@@ -25,7 +25,7 @@ add_library(cgdem_suitesparse INTERFACE)
 target_include_directories(cgdem_suitesparse INTERFACE ${SUITESPARSE_INCLUDE_DIR})
 target_link_libraries(cgdem_suitesparse INTERFACE ${CHOLMOD_LIB} ${SUITESPARSECONFIG_LIB})
 # Optional, with MPI only: hypre's structured multigrid (libhypre-dev, headers in
-# /usr/include/hypre, no CMake config) for the "pfmg" preconditioner of src/air_mpi.
+# /usr/include/hypre, no CMake config) for the "pfmg" preconditioner of solvers/pressure_mpi.
 if(MPI_CXX_FOUND)
   find_path(HYPRE_INCLUDE_DIR HYPRE_struct_ls.h PATH_SUFFIXES hypre)
   find_library(HYPRE_LIB HYPRE)

@@ -33,20 +33,23 @@ cgdem_module(cgdem_pressure DIRS solvers/pressure
   DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial SUNDIALS::nvecopenmp PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse Eigen3::Eigen)
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
 cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
-# Domain decomposition and parcel migration (issue 6); the MPI exchange in src/parallel/mpi.
+# The building blocks of the decomposition: blocks of parcels and of air cells, parcel
+# migration with contact history, the portable state; with MPI, src/parallel/mpi: the
+# exchanges, gathers and halos over ranks.
 if(CGDEM_MPI)
-  cgdem_module(cgdem_parallel DIRS src/parallel src/parallel/mpi DEPS cgdem_dem MPI::MPI_CXX)
+  cgdem_module(cgdem_parallel DIRS src/parallel src/parallel/mpi DEPS cgdem_dem cgdem_fluid MPI::MPI_CXX)
 else()
-  cgdem_module(cgdem_parallel DIRS src/parallel DEPS cgdem_dem)
+  cgdem_module(cgdem_parallel DIRS src/parallel DEPS cgdem_dem cgdem_fluid)
 endif()
-# The air side of the decomposition (issue 6, items 2-3): grid blocks, halo exchange of the
-# fluid fields and the distributed pressure solve (SUNDIALS' MPI NVECTOR, optional hypre).
+# The time steppers over MPI ranks: the distributed DEM step (solvers/dem_mpi) and the
+# distributed pressure solve (solvers/pressure_mpi: SUNDIALS' MPI NVECTOR, optional hypre).
 if(CGDEM_MPI)
-  cgdem_module(cgdem_air_mpi DIRS src/air_mpi DEPS cgdem_fluid cgdem_parallel SUNDIALS::nvecparallel MPI::MPI_CXX)
+  cgdem_module(cgdem_distributed DIRS solvers/dem_mpi solvers/pressure_mpi
+    DEPS cgdem_parallel cgdem_pressure SUNDIALS::nvecparallel MPI::MPI_CXX)
   if(HYPRE_INCLUDE_DIR AND HYPRE_LIB)
-    target_include_directories(cgdem_air_mpi PUBLIC ${HYPRE_INCLUDE_DIR})
-    target_link_libraries(cgdem_air_mpi PUBLIC ${HYPRE_LIB})
-    target_compile_definitions(cgdem_air_mpi PRIVATE CGDEM_HAVE_HYPRE)
+    target_include_directories(cgdem_distributed PUBLIC ${HYPRE_INCLUDE_DIR})
+    target_link_libraries(cgdem_distributed PUBLIC ${HYPRE_LIB})
+    target_compile_definitions(cgdem_distributed PRIVATE CGDEM_HAVE_HYPRE)
   else()
     message(STATUS "cgdem: hypre not found: the distributed pressure solve has no 'pfmg' preconditioner")
   endif()
@@ -63,7 +66,7 @@ target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
 # never initialises MPI.
 if(CGDEM_MPI)
   target_sources(cgdem_app PRIVATE ${PROJECT_SOURCE_DIR}/src/app/mpi/run_distributed.cpp)
-  target_link_libraries(cgdem_app PUBLIC cgdem_parallel cgdem_air_mpi)
+  target_link_libraries(cgdem_app PUBLIC cgdem_parallel cgdem_distributed)
   target_compile_definitions(cgdem_app PUBLIC CGDEM_WITH_MPI)
 endif()
 # The analysis on top of runs (coarse-grain scaling, spectra, convergence studies).

@@ -6,7 +6,7 @@ pkgs=(build-essential cmake git pkg-config
       libgtest-dev libtoml11-dev libcli11-dev libfmt-dev
       libopenblas0-pthread    # OpenBLAS: reference BLAS makes CHOLMOD ~12x slower
       openmpi-bin libopenmpi-dev  # MPI (src/parallel/mpi, multi-rank tests); optional for the build
-      libhypre-dev                # hypre PFMG, the "pfmg" preconditioner of src/air_mpi; optional
+      libhypre-dev                # hypre PFMG, the "pfmg" preconditioner of solvers/pressure_mpi; optional
       python3-matplotlib python3-numpy python3-h5py)  # plots of the analysis commands (optional at run time)
 missing=()
 for p in "${pkgs[@]}"; do

@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "core/timers.hpp"
 #include "io/particle_csv.hpp"
-#include "parallel/mpi/distributed_dem.hpp"
+#include "solvers/dem_mpi/distributed_dem.hpp"
 #include "solvers/dem/dem_solver.hpp"
 
 namespace cgdem {

@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "air_mpi/dist_pressure.hpp"
-#include "air_mpi/pfmg.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 #include "bench/pressure/die_fill_problem.hpp"
 #include "core/error.hpp"
 

@@ -60,7 +60,7 @@ struct EnergyBudget {
 
 // What a run over several MPI ranks adds to the step (issue 6): the lists become global,
 // and ghost parcels stand for the neighbouring ranks' parcels. DemSolver stays free of
-// MPI; the implementation is parallel::DistributedDem (src/parallel/mpi/distributed_dem.hpp).
+// MPI; the implementation is parallel::DistributedDem (solvers/dem_mpi/distributed_dem.hpp).
 // With a hook attached, the particles are this rank's owned parcels followed by
 // NeighborList::ghosts ghost copies; the step kicks and drifts only the owned ones.
 struct DomainExchange {

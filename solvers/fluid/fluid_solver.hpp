@@ -32,6 +32,7 @@
 #include "fluid/fluid_state.hpp"
 #include "fluid/ibm.hpp"
 #include "geometry/scene.hpp"
+#include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::fluid {
 

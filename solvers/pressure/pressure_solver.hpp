@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "fluid/pressure_options.hpp"
+
 namespace cgdem::pressure {
 
 enum class Boundary { Wall, Open, Periodic };
@@ -33,19 +35,7 @@ struct GridSpec {
   long cells() const { return static_cast<long>(nx) * ny * nz; }
 };
 
-struct SolverOptions {
-  // "pcg-fft": SUNDIALS PCG preconditioned by the FFTW fast Poisson solve (default)
-  // "pcg-mg":  SUNDIALS PCG preconditioned by geometric multigrid (CHOLMOD coarsest level)
-  // "cg":      unpreconditioned SUNDIALS PCG (reference)
-  // "cholmod": sparse Cholesky of the full operator (direct reference; slow, large)
-  std::string method = "pcg-fft";
-  // The Krylov engine of the preconditioned methods: "sundials" (SUNDIALS' PCG, the
-  // default) or "fused" (the same recurrence in four memory passes per iteration,
-  // fused_pcg.hpp; same iterates to ~1e-13). "cg" always runs on SUNDIALS.
-  std::string krylov = "sundials";
-  double rel_tol = 1e-8;   // ||r|| <= rel_tol ||b||
-  int max_iter = 500;
-};
+// SolverOptions (method, Krylov engine, tolerance, iteration limit): fluid/pressure_options.hpp.
 
 struct SolveStats {
   int iterations = 0;

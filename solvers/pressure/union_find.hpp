@@ -1,6 +1,6 @@
 // Disjoint sets over indices 0..n-1 held in a parent array (parent[i] = i for a root), with
 // path halving, for labelling the connected parts of a grid (the floating components of a
-// singular Poisson problem: poisson7.cpp, and across ranks src/air_mpi/dist_poisson.cpp).
+// singular Poisson problem: poisson7.cpp, and across ranks solvers/pressure_mpi/dist_poisson.cpp).
 // The smaller index becomes the root, so the labels do not depend on the order of unite().
 #pragma once
 #include <type_traits>

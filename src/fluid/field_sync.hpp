@@ -9,7 +9,7 @@
 //                           before this interface existed (results unchanged, bit for bit).
 //   air_mpi::HaloSync       one block per MPI rank: the same fills on the block's physical
 //                           sides, the halo exchange on its cut sides, reductions over the
-//                           ranks (src/air_mpi/halo_sync.hpp).
+//                           ranks (src/parallel/mpi/halo_sync.hpp).
 // A solver on a block is given the block's grid and the block's boundary conditions, with
 // every cut side marked Open (air_mpi::local_boundary): its face ranges then include the
 // faces next to a cut, and is_cut() tells it which Open sides are not really open (no

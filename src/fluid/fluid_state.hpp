@@ -16,7 +16,7 @@
 #include "fluid/boundary.hpp"
 #include "fluid/mac_grid.hpp"
 #include "fluid/momentum_terms.hpp"
-#include "solvers/pressure/pressure_solver.hpp"
+#include "fluid/pressure_options.hpp"
 
 namespace cgdem::fluid {
 

@@ -18,7 +18,7 @@
 // lists, by particle identity (negated when the pair's owner changes), together with the
 // histories that parcels arriving from another rank brought along (`incoming`).
 //
-// Ghosts (MPI runs, src/parallel/mpi/distributed_dem.hpp): the last `ghosts` particles are
+// Ghosts (MPI runs, solvers/dem_mpi/distributed_dem.hpp): the last `ghosts` particles are
 // copies of other ranks' parcels near this rank's block. build() sorts only the others
 // (the owned parcels) and leaves the ghosts where they are, lists no ghost-ghost pair and
 // gives ghosts no wall candidates. Every ghost index is above every owned index, so a

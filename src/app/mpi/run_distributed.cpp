@@ -10,10 +10,10 @@
 #include <memory>
 #include <sstream>
 
-#include "air_mpi/dist_pressure.hpp"
-#include "air_mpi/field_gather.hpp"
-#include "air_mpi/halo_sync.hpp"
-#include "air_mpi/pfmg.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
+#include "parallel/mpi/field_gather.hpp"
+#include "parallel/mpi/halo_sync.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 #include "app/checkpoint.hpp"
 #include "app/energy_csv.hpp"
 #include "app/run_checks.hpp"
@@ -26,7 +26,7 @@
 #include "io/grid_snapshot_series.hpp"
 #include "io/particle_h5.hpp"
 #include "io/snapshot_series.hpp"
-#include "parallel/mpi/distributed_dem.hpp"
+#include "solvers/dem_mpi/distributed_dem.hpp"
 #include "parallel/mpi/exchange.hpp"
 #include "parallel/mpi/gather.hpp"
 #include "particles/particle_io.hpp"

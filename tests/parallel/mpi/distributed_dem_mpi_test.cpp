@@ -43,7 +43,7 @@
 
 #include "../mpi_util.hpp"
 #include "../parallel_test_util.hpp"
-#include "parallel/mpi/distributed_dem.hpp"
+#include "solvers/dem_mpi/distributed_dem.hpp"
 
 namespace cgdem::parallel {
 namespace {

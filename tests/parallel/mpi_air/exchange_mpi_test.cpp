@@ -16,8 +16,8 @@
 #include <map>
 #include <random>
 
-#include "air_mpi/field_gather.hpp"
-#include "air_mpi/halo_sync.hpp"
+#include "parallel/mpi/field_gather.hpp"
+#include "parallel/mpi/halo_sync.hpp"
 #include "coupling/exchange.hpp"
 #include "mpi_air_util.hpp"
 

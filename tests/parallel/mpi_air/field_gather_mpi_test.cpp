@@ -1,11 +1,11 @@
 // Air fields gathered from the blocks into the whole grid and handed out again
-// (air_mpi/field_gather.hpp): cell fields and the three face fields, on 1, 2 and 4 ranks
+// (parallel/mpi/field_gather.hpp): cell fields and the three face fields, on 1, 2 and 4 ranks
 // (2 x 2 x 1 and 4 x 1 x 1), bitwise, every interior entry once.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
-#include "air_mpi/field_gather.hpp"
+#include "parallel/mpi/field_gather.hpp"
 #include "mpi_air_util.hpp"
 
 namespace cgdem::air_mpi {

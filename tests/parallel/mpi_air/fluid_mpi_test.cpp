@@ -17,10 +17,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "air_mpi/dist_pressure.hpp"
-#include "air_mpi/field_gather.hpp"
-#include "air_mpi/halo_sync.hpp"
-#include "air_mpi/pfmg.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
+#include "parallel/mpi/field_gather.hpp"
+#include "parallel/mpi/halo_sync.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 #include "mpi_air_util.hpp"
 #include "solvers/fluid/fluid_solver.hpp"
 

@@ -16,7 +16,7 @@
 #include <limits>
 
 #include "../../error_of.hpp"
-#include "air_mpi/halo.hpp"
+#include "parallel/mpi/halo.hpp"
 #include "mpi_air_util.hpp"
 
 namespace cgdem::air_mpi {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "../mpi_util.hpp"
-#include "air_mpi/grid_blocks.hpp"
+#include "parallel/grid_blocks.hpp"
 
 namespace cgdem::air_mpi::test {
 

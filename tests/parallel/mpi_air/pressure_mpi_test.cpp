@@ -13,8 +13,8 @@
 #include <cstdio>
 
 #include "../../error_of.hpp"
-#include "air_mpi/dist_pressure.hpp"
-#include "air_mpi/pfmg.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 #include "mpi_air_util.hpp"
 
 namespace cgdem::air_mpi {

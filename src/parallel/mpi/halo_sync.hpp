@@ -6,7 +6,7 @@
 #pragma once
 #include <mpi.h>
 
-#include "air_mpi/halo.hpp"
+#include "parallel/mpi/halo.hpp"
 #include "fluid/field_sync.hpp"
 
 namespace cgdem::air_mpi {

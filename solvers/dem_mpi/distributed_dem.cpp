@@ -1,4 +1,4 @@
-#include "parallel/mpi/distributed_dem.hpp"
+#include "solvers/dem_mpi/distributed_dem.hpp"
 
 #include <fmt/format.h>
 

@@ -10,7 +10,7 @@
 #pragma once
 #include <mpi.h>
 
-#include "air_mpi/grid_blocks.hpp"
+#include "parallel/grid_blocks.hpp"
 #include "fluid/mac_grid.hpp"
 
 namespace cgdem::air_mpi {

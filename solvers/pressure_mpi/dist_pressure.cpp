@@ -1,5 +1,5 @@
 // Distributed PCG pressure solve; see dist_pressure.hpp.
-#include "air_mpi/dist_pressure.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
 
 #include <nvector/nvector_parallel.h>
 #include <sundials/sundials_context.h>
@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "air_mpi/halo.hpp"
-#include "air_mpi/pfmg.hpp"
+#include "parallel/mpi/halo.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 #include "core/error.hpp"
 #include "solvers/pressure/fft_preconditioner.hpp"
 #include "solvers/pressure/multigrid.hpp"

@@ -1,5 +1,5 @@
 // Halo exchange of the air fields; see halo.hpp.
-#include "air_mpi/halo.hpp"
+#include "parallel/mpi/halo.hpp"
 
 #include <fmt/format.h>
 

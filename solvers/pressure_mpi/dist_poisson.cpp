@@ -1,5 +1,5 @@
 // The distributed 7-point operator; see dist_poisson.hpp.
-#include "air_mpi/dist_poisson.hpp"
+#include "solvers/pressure_mpi/dist_poisson.hpp"
 
 #include <fmt/format.h>
 

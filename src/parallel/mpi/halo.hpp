@@ -34,7 +34,7 @@
 
 #include <vector>
 
-#include "air_mpi/grid_blocks.hpp"
+#include "parallel/grid_blocks.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/field_sync.hpp"
 

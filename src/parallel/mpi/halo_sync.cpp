@@ -1,5 +1,5 @@
 // HaloSync: see halo_sync.hpp.
-#include "air_mpi/halo_sync.hpp"
+#include "parallel/mpi/halo_sync.hpp"
 
 #include "parallel/mpi/exchange.hpp"
 

@@ -1,4 +1,4 @@
-#include "air_mpi/field_gather.hpp"
+#include "parallel/mpi/field_gather.hpp"
 
 #include <fmt/format.h>
 

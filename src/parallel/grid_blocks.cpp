@@ -1,5 +1,5 @@
 // Blocks of the air grid; see grid_blocks.hpp.
-#include "air_mpi/grid_blocks.hpp"
+#include "parallel/grid_blocks.hpp"
 
 #include <fmt/format.h>
 

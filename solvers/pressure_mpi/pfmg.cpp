@@ -1,5 +1,5 @@
 // The hypre PFMG preconditioner; see pfmg.hpp.
-#include "air_mpi/pfmg.hpp"
+#include "solvers/pressure_mpi/pfmg.hpp"
 
 #include "core/error.hpp"
 

@@ -35,7 +35,7 @@
 #include <string>
 #include <vector>
 
-#include "air_mpi/dist_poisson.hpp"
+#include "solvers/pressure_mpi/dist_poisson.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::air_mpi {

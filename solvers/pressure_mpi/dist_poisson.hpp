@@ -29,7 +29,7 @@
 
 #include <vector>
 
-#include "air_mpi/grid_blocks.hpp"
+#include "parallel/grid_blocks.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::air_mpi {

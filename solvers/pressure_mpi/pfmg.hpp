@@ -15,7 +15,7 @@
 #pragma once
 #include <memory>
 
-#include "air_mpi/dist_pressure.hpp"
+#include "solvers/pressure_mpi/dist_pressure.hpp"
 
 namespace cgdem::air_mpi {
 
