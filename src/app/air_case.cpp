@@ -8,6 +8,12 @@ namespace cgdem::app {
 
 namespace {
 
+// Upper bounds of the [air] keys (also in air_case.hpp).
+constexpr double kMaxCellsPerAxis = 1e5;
+constexpr double kMaxCells = 1e8;  // ~10 GB of fields
+constexpr double kMaxDensity = 1e4;     // kg/m^3
+constexpr double kMaxViscosity = 1e2;   // Pa s
+
 fluid::BcType side_type(const Section& s, const std::string& key, const std::string& def) {
   const std::string t = s.string_or(key, def, {"wall", "open", "periodic"});
   return t == "wall" ? fluid::BcType::Wall : (t == "open" ? fluid::BcType::Open : fluid::BcType::Periodic);
@@ -22,11 +28,18 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   Section s = root.section("air");
   a.enabled = s.boolean_or("enabled", true);
 
-  const double dx = s.number_or("dx", 0.6e-3, Range::positive());
+  const double dx = s.number_or("dx", 0.6e-3, Range::open_closed(0, 1));
   const Vec3 size = dem.domain.hi - dem.domain.lo;
   std::array<int, 3> n{};
+  double cells = 1;
   for (int d = 0; d < 3; ++d) {
-    n[d] = static_cast<int>(std::lround(size[d] / dx));
+    const double nd = size[d] / dx;
+    cells *= nd;
+    if (!(nd <= kMaxCellsPerAxis) || !(cells <= kMaxCells))
+      s.fail("dx", fmt::format("{:g} m makes {:.3g} cells along {} ({:.3g} in all so far); at most {:g} per axis and "
+                               "{:g} in all",
+                               dx, nd, "xyz"[d], cells, kMaxCellsPerAxis, kMaxCells));
+    n[d] = static_cast<int>(std::lround(nd));
     if (n[d] < 2 || std::fabs(n[d] * dx - size[d]) > 1e-9 * size[d])
       s.fail("dx", fmt::format("the domain's {} extent {:g} m is not a whole number (>= 2) of cells of {:g} m",
                                "xyz"[d], size[d], dx));
@@ -36,15 +49,15 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   a.grid.origin = dem.domain.lo;
 
   fluid::FluidParams& f = a.fluid;
-  f.rho = s.number_or("density", 1.0, Range::positive());
-  f.mu = s.number_or("viscosity", 1.8e-5, Range::positive());
+  f.rho = s.number_or("density", 1.0, Range::open_closed(0, kMaxDensity));
+  f.mu = s.number_or("viscosity", 1.8e-5, Range::open_closed(0, kMaxViscosity));
   f.gravity = dem.gravity;
   f.cfl = s.number_or("cfl", f.cfl, Range::open_closed(0, 1));
   f.time_order = static_cast<int>(s.integer_or("time_order", f.time_order, Range::closed(1, 2)));
   f.ibm_samples = static_cast<int>(s.integer_or("ibm_samples", f.ibm_samples, Range::closed(1, 16)));
   f.advection = fluid::Advection::VanLeer;
 
-  a.coupled.dt_fluid_max = s.number_or("dt_max", 1e-4, Range::positive());
+  a.coupled.dt_fluid_max = s.number_or("dt_max", 1e-4, Range::open_closed(0, 1));
   if (a.coupled.dt_fluid_max < dem.dt * (1 - 1e-12))
     s.fail("dt_max", fmt::format("{:g} s is shorter than the DEM step time.dt = {:g} s", a.coupled.dt_fluid_max, dem.dt));
   f.dt_max = a.coupled.dt_fluid_max;
@@ -54,15 +67,15 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   f.pressure.method = ps.string_or("method", "pcg-mg2",
                                    {"pcg-fft", "pcg-mg", "pcg-mg2", "pcg-mg-f64", "pcg-mg2-f64", "cg", "cholmod"});
   f.pressure.krylov = ps.string_or("krylov", "sundials", {"sundials", "fused"});
-  f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range::positive());
-  f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::at_least(1)));
-  f.stage_rel_tol = ps.number_or("stage_tolerance", f.stage_rel_tol, Range::positive());
+  f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range{0, 1, true, true});
+  f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::closed(1, 1e6)));
+  f.stage_rel_tol = ps.number_or("stage_tolerance", f.stage_rel_tol, Range{0, 1, true, true});
   a.mpi_preconditioner =
       ps.string_or("mpi_preconditioner", "auto", {"auto", "pfmg", "bj-mg", "bj-mg2", "bj-fft", "as-mg", "as-mg2", "none"});
 
   Section bs = s.optional_section("boundary").value_or(Section(&cfg, s.key_path("boundary")));
   const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
-  const double p_open = bs.number_or("open_pressure", 0.0);
+  const double p_open = bs.number_or("open_pressure", 0.0, Range::closed(-1e7, 1e7));
   for (int side = 0; side < 6; ++side) {
     const int axis = side / 2;
     const std::string def = dem.periodic[axis] ? "periodic" : (side == 5 ? "open" : "wall");

@@ -4,11 +4,12 @@
 //
 //   [air]
 //   enabled = true            # false: the same case without air
-//   dx = 0.6e-3               # m, cubic cells; the domain must be a whole number of cells
-//   density = 1.0             # kg/m^3
-//   viscosity = 1.8e-5        # Pa s
-//   dt_max = 1e-4             # s, largest fluid step (also limited by CFL and viscosity);
-//                             # a whole number of DEM steps
+//   dx = 0.6e-3               # m, (0, 1], cubic cells; the domain must be a whole number of
+//                             # cells, at most 1e5 along an axis and 1e8 in all
+//   density = 1.0             # kg/m^3, (0, 1e4]
+//   viscosity = 1.8e-5        # Pa s, (0, 100]
+//   dt_max = 1e-4             # s, (0, 1], largest fluid step (also limited by CFL and
+//                             # viscosity); a whole number of DEM steps
 //   cfl = 0.5
 //   time_order = 2            # 1: forward Euler predictor, 2: Heun
 //   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter
@@ -17,13 +18,13 @@
 //   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha
 //   [air.pressure]  method = "pcg-mg2" (fastest on the die-filling grid: docs/pressure.md),
 //                   krylov = "sundials" (SUNDIALS PCG; "fused": the same recurrence, fewer passes),
-//                   tolerance = 1e-8, max_iterations = 500,
-//                   stage_tolerance = 1e-4 (the Heun stage-1 solve, time_order = 2),
+//                   tolerance = 1e-8 (in (0, 1)), max_iterations = 500 (1 .. 1e6),
+//                   stage_tolerance = 1e-4 (in (0, 1); the Heun stage-1 solve, time_order = 2),
 //                   mpi_preconditioner = "auto" | "as-mg2" | "as-mg" | "bj-mg" | "bj-mg2" |
 //                   "bj-fft" | "pfmg" | "none" (under mpirun only; "auto": as-mg2 on up to
 //                   4 ranks, pfmg beyond when built with hypre; docs/scale_out.md)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
-//                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa)
+//                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa, |p| <= 1e7)
 #pragma once
 #include "core/config.hpp"
 #include "coupling/exchange.hpp"

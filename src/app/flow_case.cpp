@@ -17,6 +17,8 @@ namespace cgdem::app {
 
 namespace {
 
+constexpr double kMaxFlowSteps = 1e9;
+
 // The exact Taylor-Green field at amplitude factor F (flow_case.hpp).
 struct TaylorGreen {
   double k, u0;
@@ -43,20 +45,20 @@ FlowCase read_flow_case(Config& cfg) {
   Section s = cfg.root().section("flow");
   c.kind = s.string("kind", {"taylor_green"});
   c.n = static_cast<int>(s.integer("n", Range::closed(4, 4096)));
-  c.length = s.number_or("length", 2 * M_PI, Range::positive());
-  c.amplitude = s.number_or("amplitude", 1.0, Range::positive());
-  c.t_end = s.number("end", Range::positive());
+  c.length = s.number_or("length", 2 * M_PI, Range::open_closed(0, 1e3));
+  c.amplitude = s.number_or("amplitude", 1.0, Range::open_closed(0, 1e3));
+  c.t_end = s.number("end", Range::open_closed(0, 1e6));
 
   fluid::FluidParams& f = c.fluid;
-  f.rho = s.number_or("density", 1.0, Range::positive());
-  f.mu = s.number_or("viscosity", 0.05, Range::positive());
+  f.rho = s.number_or("density", 1.0, Range::open_closed(0, 1e4));
+  f.mu = s.number_or("viscosity", 0.05, Range::open_closed(0, 1e2));
   f.time_order = static_cast<int>(s.integer_or("time_order", 2, Range::closed(1, 2)));
   f.advection = fluid::advection_from_string(s.string_or("advection", "van-leer", {"van-leer", "mc", "central", "upwind"}));
   f.bc = fluid::uniform_boundary(fluid::BcType::Periodic);
   Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
   f.pressure.method = ps.string_or("method", "pcg-fft", {"pcg-fft", "pcg-mg", "pcg-mg2", "cg"});
-  f.pressure.rel_tol = ps.number_or("tolerance", 1e-11, Range::positive());
-  f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", 500, Range::at_least(1)));
+  f.pressure.rel_tol = ps.number_or("tolerance", 1e-11, Range{0, 1, true, true});
+  f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", 500, Range::closed(1, 1e6)));
   f.stage_rel_tol = f.pressure.rel_tol;  // the verification solves every stage to the same tolerance
   // The explicit limits without safety factors: a fixed dt is checked against them below.
   f.cfl = 1.0;
@@ -67,8 +69,10 @@ FlowCase read_flow_case(Config& cfg) {
   const bool has_dt = s.has("dt"), has_cfl = s.has("cfl");
   if (has_dt == has_cfl) s.fail(has_dt ? "cfl" : "dt", "give exactly one of flow.dt and flow.cfl");
   if (has_dt) {
-    c.dt = s.number("dt", Range::positive());
+    c.dt = s.number("dt", Range::open_closed(0, 1e6));
     const double steps = c.t_end / c.dt;
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("dt", fmt::format("flow.end / flow.dt = {:.3g} steps, more than {:g}", steps, kMaxFlowSteps));
     c.steps = std::lround(steps);
     if (c.steps < 1 || std::fabs(steps - c.steps) > 1e-9 * steps)
       s.fail("dt", fmt::format("flow.end = {:g} s is not a whole number of steps of {:g} s", c.t_end, c.dt));
@@ -76,7 +80,11 @@ FlowCase read_flow_case(Config& cfg) {
   const double dt_adv = dx / (2 * c.amplitude), dt_visc = dx * dx * f.rho / (6 * f.mu);
   if (has_cfl) {
     const double cfl = s.number("cfl", Range::open_closed(0, 1));
-    c.steps = static_cast<long>(std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9));
+    const double steps = std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9);
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("cfl", fmt::format("flow.end = {:g} s takes {:.3g} steps at this Courant number, more than {:g}", c.t_end,
+                                steps, kMaxFlowSteps));
+    c.steps = static_cast<long>(steps);
     c.dt = c.t_end / c.steps;
   }
   if (c.dt > dt_adv * (1 + 1e-12) || c.dt > dt_visc * (1 + 1e-12))

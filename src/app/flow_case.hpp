@@ -12,13 +12,13 @@
 //
 //   [flow]
 //   kind = "taylor_green"
-//   n = 32                    # cells per side (>= 4)
-//   length = 6.283185307179586  # m, L (default 2 pi)
-//   amplitude = 1.0           # m/s, U0
-//   density = 1.0             # kg/m^3
-//   viscosity = 0.05          # Pa s (dynamic)
-//   end = 1.0                 # s
-//   dt = 0.02                 # s, fixed step; end must be a whole number of steps
+//   n = 32                    # cells per side (4 .. 4096)
+//   length = 6.283185307179586  # m, L (default 2 pi; at most 1e3)
+//   amplitude = 1.0           # m/s, U0 (at most 1e3)
+//   density = 1.0             # kg/m^3 (at most 1e4)
+//   viscosity = 0.05          # Pa s (dynamic; at most 100)
+//   end = 1.0                 # s (at most 1e6)
+//   dt = 0.02                 # s, fixed step; end must be a whole number of steps (<= 1e9)
 //   cfl = 0.5                 # or (not both): a fraction of the explicit limit dt_lim below,
 //                             # dt = end / ceil(end / (cfl dt_lim))
 //   time_order = 2            # 1: forward Euler, 2: Heun

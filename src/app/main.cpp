@@ -1,5 +1,5 @@
 // The cgdem command line.
-//   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N] [--restart CHECKPOINT]
+//   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N] [--restart CHECKPOINT] [--check]
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
@@ -8,7 +8,9 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/checkpoint.hpp"
 #include "app/launcher.hpp"
@@ -40,6 +42,15 @@ int parse_grid(const std::string& g, Args& a) {
   return 0;
 }
 
+// Ends the process after an error was printed, without the exit handlers: after a failed
+// write (disk full, file-size limit) HDF5 1.10's own exit handler tries again to flush the
+// file it could not close and crashes (SIGSEGV in H5F__close_cb), which would turn the
+// reported error into a signal. The standard streams (and any open CSV) are flushed first.
+[[noreturn]] void stop_after_error(int status) {
+  std::fflush(nullptr);
+  std::_Exit(status);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,6 +62,7 @@ int main(int argc, char** argv) {
 
   std::string case_file, output, restart;
   std::vector<std::string> sets;
+  bool check_only = false;
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required()->check(CLI::ExistingFile);
   run->add_option("--set", sets, "override a key: key.path=value (repeatable)");
@@ -58,6 +70,9 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   run->add_option("--restart", restart, "continue from a checkpoint (OUTPUT/checkpoint.bin of the same case)")
       ->check(CLI::ExistingFile);
+  run->add_flag("--check", check_only,
+                "validate the whole configuration, build the scene and insert the parcels, then exit without "
+                "stepping or writing (exit 0: valid)");
 
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
@@ -97,6 +112,9 @@ int main(int argc, char** argv) {
   cgdem::scaling::CompareCommand compare(app);
 
   CLI11_PARSE(app, argc, argv);
+  // A file-size limit (ulimit -f) must make write() fail with EFBIG, which the writers
+  // report with the file's name, instead of killing the process with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (openblas_set_num_threads) openblas_set_num_threads(1);
   const auto launched = cgdem::app::launched_as();
 #ifdef CGDEM_WITH_MPI
@@ -118,7 +136,9 @@ int main(int argc, char** argv) {
     }
     if (*run) {
       if (threads > 0) omp_set_num_threads(threads);
-      return cgdem::app::run_case_file({case_file, sets, output, restart});
+      cgdem::app::RunRequest request{case_file, sets, output, restart};
+      request.check = check_only;
+      return cgdem::app::run_case_file(request);
     }
     if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
     if (*bpress) {
@@ -136,7 +156,10 @@ int main(int argc, char** argv) {
     if (compare.selected()) return compare.run();
   } catch (const cgdem::Error& e) {
     std::fprintf(stderr, "cgdem: error: %s\n", e.what());
-    return 2;
+    stop_after_error(2);
+  } catch (const std::exception& e) {  // a library's exception (file system, allocation): still a clean stop
+    std::fprintf(stderr, "cgdem: error: %s\n", e.what());
+    stop_after_error(3);
   }
   return 0;
 }

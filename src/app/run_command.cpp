@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <system_error>
 
 #include "app/air_case.hpp"
 #include "app/dem_case.hpp"
@@ -21,8 +23,24 @@ namespace {
 Config load(const RunRequest& r) {
   Config cfg = Config::from_file(r.case_file);
   for (const auto& s : r.sets) cfg.apply_override(s);
-  if (!r.output.empty()) cfg.apply_override("output.dir=\"" + r.output + "\"");
+  if (!r.output.empty()) cfg.override_string("output.dir", r.output, fmt::format("--output '{}'", r.output));
   return cfg;
+}
+
+// The output folder, created before anything is written to it: a folder that cannot be
+// made (a parent that is a file, a read-only file system, no permission) stops the run
+// with its name and the reason.
+void make_output_folder(Config& cfg, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir, ec))
+    throw Error(fmt::format("cannot create the output folder '{}' (output.dir, from {}): {}", dir,
+                            cfg.origin("output.dir"), ec ? ec.message() : "not a folder"));
+}
+
+std::string case_folder(const std::string& case_file) {
+  const std::string d = std::filesystem::path(case_file).parent_path().string();
+  return d.empty() ? "." : d;
 }
 
 }  // namespace
@@ -35,6 +53,12 @@ int run_case_file(const RunRequest& r) {
     if (!r.restart.empty()) throw Error("--restart: flow cases ([flow]) have no checkpoints; run them afresh");
     FlowCase f = read_flow_case(cfg);
     cfg.check_unused();
+    if (r.check) {
+      fmt::print("{}: valid: flow case {} on {} x {} cells, {} steps to {:g} s (checked, not run)\n", r.case_file, f.kind,
+                 f.n, f.n, f.steps, f.t_end);
+      return 0;
+    }
+    make_output_folder(cfg, f.output_dir);
     return run_flow_case(f, r.case_file, cfg.resolved_toml());
   }
   DemCase c = read_dem_case(cfg);
@@ -45,6 +69,22 @@ int run_case_file(const RunRequest& r) {
     const std::string w = geometry::sliding_plane_warning(diag.die, air.grid.origin.z, air.grid.dx);
     if (!w.empty()) fmt::print(stderr, "cgdem: warning: {}\n", w);
   }
+  if (r.check) {
+    // The scene and the insertion as the run would make them (the air's fields are not
+    // allocated: read_air_case bounded the grid).
+    auto dem = build_solver(c, case_folder(r.case_file));
+    long planned = 0;
+    for (const auto& ins : c.inserts) planned += ins.count;
+    fmt::print("{}: valid: {} parcels ({} inserted in {} region(s), {} from files), {} species, {} wall parts, {}, "
+               "t = {:g} .. {:g} s in steps of {:g} s (checked, not run)\n",
+               r.case_file, dem->particles().size(), planned, c.inserts.size(),
+               static_cast<long>(dem->particles().size()) - planned, c.species.size(), dem->scene().parts().size(),
+               air.enabled ? fmt::format("air on {} x {} x {} cells", air.grid.nx, air.grid.ny, air.grid.nz)
+                           : std::string("vacuum"),
+               c.t_start, c.t_end, c.dem.dt);
+    return 0;
+  }
+  make_output_folder(cfg, c.output.dir);
   const RunInfo info{r.case_file, cfg.resolved_toml(), r.restart};
   if (r.distributed) {
 #ifdef CGDEM_WITH_MPI

@@ -11,6 +11,10 @@ struct RunRequest {
   std::vector<std::string> sets;  // key.path=value overrides, applied in order
   std::string output;             // overrides output.dir when not empty
   std::string restart;            // checkpoint to continue from, or empty
+  // `cgdem run CASE --check`: read and validate the whole configuration, build the scene
+  // and insert the parcels (the air grid's size is checked, not allocated), print a
+  // summary and return 0 without stepping or writing anything.
+  bool check = false;
   // Over the ranks of MPI_COMM_WORLD (mpi/run_distributed.hpp; builds with CGDEM_MPI,
   // MPI initialised by the caller).
   bool distributed = false;

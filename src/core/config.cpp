@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <limits>
+#include <regex>
 #include <sstream>
 #include <toml.hpp>
 
@@ -36,10 +40,16 @@ std::vector<Step> split_path(const std::string& path) {
     auto br = item.find('[');
     if (br != std::string::npos) {
       s.key = item.substr(0, br);
-      s.index = std::stoi(item.substr(br + 1));
+      const std::string idx = item.substr(br + 1);
+      // "name[12]": digits, then ']' at the end (anything else is not a path of ours)
+      size_t n = 0;
+      while (n < idx.size() && n < 9 && std::isdigit(static_cast<unsigned char>(idx[n]))) ++n;
+      if (n == 0 || n + 1 != idx.size() || idx[n] != ']') return {};
+      s.index = std::stoi(idx.substr(0, n));
     } else {
       s.key = item;
     }
+    if (s.key.empty()) return {};
     steps.push_back(s);
   }
   return steps;
@@ -49,7 +59,9 @@ std::vector<Step> split_path(const std::string& path) {
 Value* lookup(Value& root, const std::string& path, bool create) {
   Value* v = &root;
   if (path.empty()) return v;
-  for (const Step& s : split_path(path)) {
+  const std::vector<Step> steps = split_path(path);
+  if (steps.empty()) return nullptr;  // not a well-formed path
+  for (const Step& s : steps) {
     if (!v->is_table()) return nullptr;
     auto& t = v->as_table();
     auto it = t.find(s.key);
@@ -82,7 +94,14 @@ std::string show(const Value& v) {
   std::ostringstream os;
   if (v.is_table()) return "a table";
   os << v;
-  std::string s = os.str();
+  std::string s, raw = os.str();
+  for (char ch : raw) {  // one line: toml11 prints arrays over several
+    if (ch == '\n') ch = ' ';
+    if (ch == ' ' && (s.empty() || s.back() == ' ' || s.back() == '[')) continue;
+    if (ch == ']' && !s.empty() && s.back() == ' ') s.pop_back();
+    if (ch == ']' && !s.empty() && s.back() == ',') s.pop_back();
+    s += ch;
+  }
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
   return s;
 }
@@ -99,6 +118,67 @@ void collect_leaves(const Value& v, const std::string& path, std::vector<std::st
     out.push_back(path);
   }
 }
+
+// The line of a value in the file `filename` (0: not from that file, e.g. a default or an
+// override).
+unsigned line_of(const Value& v, const std::string& filename) {
+  const toml::detail::region_base* reg = toml::detail::get_region(v);
+  if (!reg || !reg->is_ok() || reg->name() != filename) return 0;
+  const std::string n = reg->line_num();
+  if (n.empty() || !std::isdigit(static_cast<unsigned char>(n[0]))) return 0;
+  return static_cast<unsigned>(std::stoul(n));
+}
+
+// The value as written in the file when known (an integer too large for 64 bits is
+// stored saturated), otherwise as TOML.
+std::string source_text(const Value& v) {
+  const toml::detail::region_base* reg = toml::detail::get_region(v);
+  if (reg && reg->is_ok()) return reg->str();
+  return show(v);
+}
+
+// Control bytes (binary garbage in a file) are shown as '?' in messages.
+std::string printable(std::string s) {
+  for (char& ch : s)
+    if ((static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t') || ch == 0x7f) ch = '?';
+  return s;
+}
+
+// toml11's message "[error] toml::fn: what\n --> file\n   |\n 3 | line\n..." as
+// "FILE:3: cannot read the case file: syntax error: what" and the excerpt below it.
+std::string syntax_error_message(const std::string& filename, const std::string& what) {
+  std::string first = what.substr(0, what.find('\n')), rest = what.find('\n') == std::string::npos ? "" : what.substr(what.find('\n'));
+  static const std::regex prefix(R"(^\[error\] (toml::[A-Za-z_:]+: )?)");
+  first = std::regex_replace(first, prefix, "");
+  static const std::regex line_re(R"(\n *([0-9]+) \|)");
+  std::string where = filename, line;
+  // the first excerpt's line; for a key or table defined twice the second definition's
+  for (auto it = std::sregex_iterator(rest.begin(), rest.end(), line_re); it != std::sregex_iterator(); ++it) {
+    line = (*it)[1].str();
+    if (first.find("already exists") == std::string::npos) break;
+  }
+  if (!line.empty()) where += ":" + line;
+  return printable(fmt::format("{}: cannot read the case file: syntax error: {}{}", where, first, rest));
+}
+
+// toml11 stores an integer literal beyond 64 bits saturated: such a value was not what
+// the file says.
+bool saturated(const Value& v) {
+  if (!v.is_integer()) return false;
+  const auto x = v.as_integer();
+  return x == std::numeric_limits<toml::integer>::max() || x == std::numeric_limits<toml::integer>::min();
+}
+
+// The keys of `path` split on dots (indices kept: "body[0]").
+std::vector<std::string> components(const std::string& path) {
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream is(path);
+  while (std::getline(is, item, '.')) out.push_back(item);
+  return out;
+}
+
+std::string strip_index(const std::string& c) { return c.substr(0, c.find('[')); }
 
 }  // namespace
 
@@ -123,8 +203,10 @@ Config Config::from_file(const std::string& filename) {
   c.filename_ = filename;
   try {
     c.doc_->root = toml::parse<toml::discard_comments, std::map, std::vector>(filename);
+  } catch (const toml::syntax_error& e) {
+    throw ConfigError(syntax_error_message(filename, e.what()));
   } catch (const std::exception& e) {
-    throw ConfigError(fmt::format("{}: cannot read the case file: {}", filename, e.what()));
+    throw ConfigError(printable(fmt::format("{}: cannot read the case file: {}", filename, e.what())));
   }
   return c;
 }
@@ -135,8 +217,10 @@ Config Config::from_string(const std::string& text, const std::string& name) {
   std::istringstream is(text);
   try {
     c.doc_->root = toml::parse<toml::discard_comments, std::map, std::vector>(is, name);
+  } catch (const toml::syntax_error& e) {
+    throw ConfigError(syntax_error_message(name, e.what()));
   } catch (const std::exception& e) {
-    throw ConfigError(fmt::format("{}: cannot parse: {}", name, e.what()));
+    throw ConfigError(printable(fmt::format("{}: cannot parse: {}", name, e.what())));
   }
   return c;
 }
@@ -146,6 +230,10 @@ void Config::apply_override(const std::string& assignment) {
   if (eq == std::string::npos || eq == 0)
     throw ConfigError(fmt::format("--set '{}': expected key.path=value", assignment));
   std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  if (split_path(path).empty() || path.back() == '.' || path.back() == ']')
+    throw ConfigError(fmt::format("--set '{}': '{}' is not a key path (names separated by dots, e.g. time.end; "
+                                  "an element of an array of tables as particles.insert[0].count)",
+                                  assignment, path));
   Value parsed;
   try {
     std::istringstream is("v = " + text);
@@ -158,8 +246,40 @@ void Config::apply_override(const std::string& assignment) {
   std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
   Value* table = lookup(doc_->root, parent, /*create=*/true);
   if (!table || !table->is_table())
-    throw ConfigError(fmt::format("--set '{}': '{}' is not a table in {}", assignment, parent, filename_));
+    throw ConfigError(fmt::format("command line (--set '{}'): '{}' is not a table in {}", assignment, parent, filename_));
   table->as_table()[key] = parsed;
+  overrides_[path] = fmt::format("--set '{}'", assignment);
+}
+
+void Config::override_string(const std::string& path, const std::string& value, const std::string& origin) {
+  auto dot = path.rfind('.');
+  std::string parent = dot == std::string::npos ? "" : path.substr(0, dot);
+  Value* table = lookup(doc_->root, parent, /*create=*/true);
+  if (!table || !table->is_table())
+    throw ConfigError(fmt::format("command line ({}): '{}' is not a table in {}", origin, parent, filename_));
+  table->as_table()[dot == std::string::npos ? path : path.substr(dot + 1)] = Value(value);
+  overrides_[path] = origin;
+}
+
+std::string Config::origin(const std::string& path) const {
+  for (std::string p = path;;) {  // an override of the key or of a table above it
+    auto it = overrides_.find(p);
+    if (it != overrides_.end()) return fmt::format("command line ({})", it->second);
+    auto dot = p.rfind('.');
+    if (dot == std::string::npos) break;
+    p = p.substr(0, dot);
+  }
+  for (std::string p = path; !p.empty();) {  // the key's line, else its table's
+    if (const Value* v = lookup(doc_->root, p, false))
+      if (unsigned line = line_of(*v, filename_)) return fmt::format("{}:{}", filename_, line);
+    auto cut = p.find_last_of(".[");
+    p = cut == std::string::npos ? "" : p.substr(0, cut);
+  }
+  return filename_;
+}
+
+namespace {
+size_t edit_distance(const std::string& a, const std::string& b);
 }
 
 void Config::check_unused() const {
@@ -168,9 +288,52 @@ void Config::check_unused() const {
   for (const auto& k : leaves)
     if (!used_.count(k)) unknown.push_back(k);
   if (unknown.empty()) return;
-  std::string msg = fmt::format("{}: unknown key{} (not used by this case; check the spelling):", filename_,
-                                unknown.size() > 1 ? "s" : "");
-  for (const auto& k : unknown) msg += "\n  " + k;
+  // A prefix of a key path is known when the case read something at or below it.
+  auto known = [&](const std::string& prefix) {
+    for (auto it = used_.lower_bound(prefix); it != used_.end() && it->compare(0, prefix.size(), prefix) == 0; ++it)
+      if (it->size() == prefix.size() || (*it)[prefix.size()] == '.' || (*it)[prefix.size()] == '[') return true;
+    return false;
+  };
+  std::vector<std::string> msgs;
+  for (const auto& k : unknown) {
+    const Value* v = lookup(doc_->root, k, false);
+    if (v && known(k)) {  // a table the case reads, given as a value
+      msgs.push_back(fmt::format("{}: key '{}': expected a table [{}], got {} ({})", origin(k), k, k, type_name(*v),
+                                 show(*v)));
+      continue;
+    }
+    // The first component nobody read, and the known names beside it.
+    const auto parts = components(k);
+    std::string parent, hint;
+    for (size_t i = 0; i < parts.size(); ++i) {
+      const std::string here = parent.empty() ? parts[i] : parent + "." + parts[i];
+      if (known(here)) {
+        parent = here;
+        continue;
+      }
+      const std::string name = strip_index(parts[i]);
+      std::set<std::string> names;  // the known keys of the table `parent`
+      const std::string under = parent.empty() ? "" : parent + ".";
+      for (auto it = used_.lower_bound(under); it != used_.end() && it->compare(0, under.size(), under) == 0; ++it)
+        names.insert(strip_index(components(it->substr(under.size())).front()));
+      size_t best = std::max<size_t>(2, name.size() / 3) + 1;
+      std::vector<std::string> close;
+      for (const auto& n : names) {
+        const size_t d = edit_distance(n, name);
+        if (d < best) best = d, close.clear();
+        if (d == best) close.push_back(under + n);
+      }
+      if (!close.empty()) hint = fmt::format(" (did you mean '{}'?)", fmt::join(close, "' or '"));
+      else if (!names.empty() && names.size() <= 12)
+        hint = fmt::format(" (the keys of {} are: {})", parent.empty() ? "the file" : "[" + parent + "]",
+                           fmt::join(names, ", "));
+      break;
+    }
+    msgs.push_back(fmt::format("{}: unknown key '{}'{}", origin(k), k, hint));
+  }
+  if (msgs.size() == 1) throw ConfigError(msgs.front() + "; it is not used by this case: check the spelling");
+  std::string msg = fmt::format("{}: {} unknown keys (not used by this case; check the spelling):", filename_, msgs.size());
+  for (const auto& m : msgs) msg += "\n  " + m;
   throw ConfigError(msg);
 }
 
@@ -215,7 +378,7 @@ void Section::fail(const std::string& key, const std::string& what) const {
       for (const auto& [k, v] : t->as_table())
         if (k != key && edit_distance(k, key) <= 2) hint += fmt::format(" (found '{}': misspelt?)", key_path(k));
   }
-  throw ConfigError(fmt::format("{}: key '{}': {}{}", cfg_->filename_, key_path(key), what, hint));
+  throw ConfigError(fmt::format("{}: key '{}': {}{}", cfg_->origin(key_path(key)), key_path(key), what, hint));
 }
 
 bool Section::has(const std::string& key) const {
@@ -242,7 +405,13 @@ static void store_default(Value& root, const Section& s, const std::string& key,
   used.insert(s.key_path(key));
 }
 
+[[noreturn]] static void fail_saturated(const Section& s, const std::string& key, const Value& v) {
+  s.fail(key, fmt::format("the integer {} does not fit in 64 bits (write a number such as 1e19 if that is meant)",
+                          source_text(v)));
+}
+
 static double as_number(const Section& s, const std::string& key, const Value& v, const Range& r) {
+  if (saturated(v)) fail_saturated(s, key, v);
   double x;
   if (v.is_floating()) x = v.as_floating();
   else if (v.is_integer()) x = static_cast<double>(v.as_integer());
@@ -268,6 +437,7 @@ double Section::number_or(const std::string& key, double def, Range r) const {
 
 static long as_integer(const Section& s, const std::string& key, const Value& v, const Range& r) {
   if (!v.is_integer()) s.fail(key, fmt::format("expected an integer, got {} ({})", type_name(v), show(v)));
+  if (saturated(v)) fail_saturated(s, key, v);
   long x = static_cast<long>(v.as_integer());
   if (!r.contains(static_cast<double>(x)))
     s.fail(key, fmt::format("expected an integer, {}, got {}", r.describe(), x));
@@ -333,6 +503,7 @@ static std::vector<double> as_numbers(const Section& s, const std::string& key, 
   if (!v.is_array()) s.fail(key, fmt::format("expected an array of numbers, got {} ({})", type_name(v), show(v)));
   std::vector<double> out;
   for (const auto& e : v.as_array()) {
+    if (saturated(e)) fail_saturated(s, key, e);
     double x;
     if (e.is_floating()) x = e.as_floating();
     else if (e.is_integer()) x = static_cast<double>(e.as_integer());

@@ -5,7 +5,8 @@
 // document, so that after parsing
 //   * check_unused() rejects any key nobody asked for (typos never pass silently), and
 //   * resolved_toml() is the complete configuration the run actually used.
-// Every error names the file, the full key path and what was expected.
+// Every error names the file and line (or the command-line option), the full key path and
+// what was expected; a bounded Range states its bound.
 #pragma once
 #include <cmath>
 #include <functional>
@@ -88,14 +89,23 @@ class Config {
   ~Config();
 
   // `--set a.b.c=value`: value is parsed as TOML (number, bool, array, quoted string);
-  // anything that does not parse is taken as a bare string.
+  // anything that does not parse is taken as a bare string. An error about an overridden
+  // key names the command line (`--set 'a.b.c=value'`), not the file.
   void apply_override(const std::string& assignment);
+  // Sets the string at `path` (e.g. output.dir from --output); `origin` names the option
+  // in error messages, e.g. "--output 'DIR'".
+  void override_string(const std::string& path, const std::string& value, const std::string& origin);
 
   Section root() { return Section(this, ""); }
   const std::string& filename() const { return filename_; }
 
-  // Throws ConfigError listing every key that was never read.
+  // Throws ConfigError listing every key that was never read, each with its line and, when
+  // a known key of the same table is close (edit distance), "did you mean".
   void check_unused() const;
+  // Where the value at `path` came from, for messages: "FILE:LINE" (the key's line, or the
+  // line of the nearest enclosing table when the key is absent), "command line (--set
+  // 'a.b=v')" for an override, or "FILE" when no line is known.
+  std::string origin(const std::string& path) const;
   // The configuration with defaults filled in, as TOML text.
   std::string resolved_toml() const;
 
@@ -106,6 +116,7 @@ class Config {
   std::unique_ptr<Doc> doc_;
   std::string filename_;
   std::set<std::string> used_;
+  std::map<std::string, std::string> overrides_;  // key path -> the option that set it
 };
 
 }  // namespace cgdem

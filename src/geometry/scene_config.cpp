@@ -21,11 +21,11 @@ ShapePtr read_shape(const Section& s) {
     shape = make_half_space(p, n);
   } else if (type == "cylinder") {
     Vec3 p0 = s.vec3("p0"), p1 = s.vec3("p1");
-    double r = s.number("radius", Range::positive());
+    double r = s.number("radius", Range::open_closed(0, 1e3));
     if (!(norm(p1 - p0) > 0)) s.fail("p1", "must differ from p0");
     shape = make_cylinder(p0, p1, r);
   } else {
-    shape = make_sphere(s.vec3("centre"), s.number("radius", Range::positive()));
+    shape = make_sphere(s.vec3("centre"), s.number("radius", Range::open_closed(0, 1e3)));
   }
   if (s.boolean_or("inside_free", false)) shape = make_complement(shape);
   return shape;

@@ -1,0 +1,27 @@
+# Failure cases of `cgdem run` (each prints what it tried and its counts):
+#   cli.failures.set_value_names_command_line   an error in --set names the option
+#   cli.failures.fuzzed_case_files    200 mutated case files through `cgdem run --check`
+#                                     (tests/cli/fuzz_cases.py): no crash, every rejection names
+#                                     file:line and key (or the --set option), no wrong acceptance
+# A value given with --set is the command line's error, not the file's.
+add_test(NAME cli.failures.set_value_names_command_line
+         COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                 "-DEXPECT=error: command line \\(--set 'contact.restitution=2'\\): key 'contact.restitution': expected a number in \\(0, 1\\], got 2"
+                 "-DEXTRA=--set;contact.restitution=2" -DWORK=${PROJECT_BINARY_DIR}/cli_out/set_value
+                 -P ${PROJECT_SOURCE_DIR}/tests/cli/expect_error.cmake)
+set_tests_properties(cli.failures.set_value_names_command_line PROPERTIES LABELS cli)
+# Python: /usr/bin/python3 (Debian's, with h5py and numpy) when present.
+find_program(CGDEM_TEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT CGDEM_TEST_PYTHON)
+  find_program(CGDEM_TEST_PYTHON NAMES python3)
+endif()
+if(CGDEM_TEST_PYTHON)
+  set(_cli ${PROJECT_SOURCE_DIR}/tests/cli)
+  set(_out ${PROJECT_BINARY_DIR}/cli_out/failures)
+  add_test(NAME cli.failures.fuzzed_case_files
+           COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/fuzz_cases.py --cgdem $<TARGET_FILE:cgdem> --root ${PROJECT_SOURCE_DIR}
+                   --work ${_out}/fuzz --count 200 --seed 21)
+  set_tests_properties(cli.failures.fuzzed_case_files PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+else()
+  message(STATUS "cgdem: no python3: the cli.failures.* tests are not registered")
+endif()
