@@ -33,11 +33,14 @@ void DemSolver::load(io::ArchiveReader& r) {
   r.get(nl_.builds), r.get(nl_.shift);
   particle_and_list_fields([&](auto& v) { r.get_vector(v); }, p_, nl_);
   const size_t n = p_.x.size();
-  if (p_.id.size() != n || p_.v.size() != n || nl_.offset.size() != n + 1)
+  // A solver that has not stepped yet (a run's checkpoint at its start) has no lists: its
+  // first step builds them, as it did in the run that wrote the checkpoint.
+  const bool unbuilt = !forces_valid_ && nl_.offset.empty();
+  if (p_.id.size() != n || p_.v.size() != n || (!unbuilt && nl_.offset.size() != n + 1))
     throw Error("checkpoint: inconsistent particle or neighbour-list sizes");
   if (nl_.hist.size() != nl_.partner.size() || nl_.rev_entry.size() != nl_.partner.size())
     throw Error("checkpoint: inconsistent neighbour-list sizes");
-  nl_.derive();
+  if (!unbuilt) nl_.derive();
   for (int s : p_.species)
     if (s < 0 || s >= static_cast<int>(species_.size())) throw Error("checkpoint: unknown species index");
   frame_ = scene_.at(t_);

@@ -3,6 +3,10 @@
 #   cli.failures.fuzzed_case_files    200 mutated case files through `cgdem run --check`
 #                                     (tests/cli/fuzz_cases.py): no crash, every rejection names
 #                                     file:line and key (or the --set option), no wrong acceptance
+#   cli.failures.kill_mid_write       SIGKILL during snapshot and checkpoint writing, then every
+#                                     .h5 / .xdmf read and a restart to the uninterrupted digest
+#   cli.failures.restart_die_filling_air  the die filling with air restarted at T/2: final
+#                                     snapshots, digests and CSV series bitwise equal
 # A value given with --set is the command line's error, not the file's.
 add_test(NAME cli.failures.set_value_names_command_line
          COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
@@ -21,7 +25,14 @@ if(CGDEM_TEST_PYTHON)
   add_test(NAME cli.failures.fuzzed_case_files
            COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/fuzz_cases.py --cgdem $<TARGET_FILE:cgdem> --root ${PROJECT_SOURCE_DIR}
                    --work ${_out}/fuzz --count 200 --seed 21)
-  set_tests_properties(cli.failures.fuzzed_case_files PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+  add_test(NAME cli.failures.kill_mid_write
+           COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/kill_mid_write.py --cgdem $<TARGET_FILE:cgdem> --case ${_cli}/base.toml
+                   --work ${_out}/kill --kills 12 --seed 7)
+  add_test(NAME cli.failures.restart_die_filling_air
+           COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/restart_die_filling.py --cgdem $<TARGET_FILE:cgdem>
+                   --case ${PROJECT_SOURCE_DIR}/validation/die_filling/case_1_3.toml --work ${_out}/restart_die)
+  set_tests_properties(cli.failures.fuzzed_case_files cli.failures.kill_mid_write cli.failures.restart_die_filling_air
+                       PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
 else()
   message(STATUS "cgdem: no python3: the cli.failures.* tests are not registered")
 endif()
