@@ -41,12 +41,12 @@ std::string temporary_path(const std::string& path) {
 
 void commit_temporary(const std::string& tmp, const std::string& path) {
   try {
-    fsync_path(tmp, false);
+    fsync_path(tmp, false);  // a full disk may first show here (delayed allocation)
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       throw Error("cannot rename '" + tmp + "' to '" + path + "': " + errno_text());
-  } catch (...) {
+  } catch (const Error& e) {
     std::remove(tmp.c_str());
-    throw;
+    throw Error("cannot write '" + path + "': " + e.what() + " (the previous file is unchanged)");
   }
   fsync_path(parent_dir(path), true);
 }
@@ -54,13 +54,16 @@ void commit_temporary(const std::string& tmp, const std::string& path) {
 void write_file_atomic(const std::string& path, std::string_view bytes) {
   const std::string tmp = temporary_path(path);
   int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error("cannot create '" + tmp + "' (writing '" + path + "'): " + errno_text());
+  if (fd < 0) throw Error("cannot write '" + path + "': cannot create its temporary '" + tmp + "': " + errno_text());
   size_t done = 0;
   while (done < bytes.size()) {
     ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      std::string msg = "write to '" + tmp + "' failed: " + errno_text();
+      // EFBIG (file-size limit), ENOSPC (disk full), EIO: the previous `path` stays as it was
+      std::string msg = "cannot write '" + path + "': " + errno_text() + " (after " + std::to_string(done) + " of " +
+                        std::to_string(bytes.size()) + " bytes to its temporary '" + tmp +
+                        "'; the previous file is unchanged)";
       ::close(fd);
       std::remove(tmp.c_str());
       throw Error(msg);
@@ -68,7 +71,7 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
     done += static_cast<size_t>(n);
   }
   if (::close(fd) != 0) {
-    std::string msg = "closing '" + tmp + "' failed: " + errno_text();
+    std::string msg = "cannot write '" + path + "': closing its temporary '" + tmp + "' failed: " + errno_text();
     std::remove(tmp.c_str());
     throw Error(msg);
   }

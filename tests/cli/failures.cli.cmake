@@ -7,6 +7,8 @@
 #                                     .h5 / .xdmf read and a restart to the uninterrupted digest
 #   cli.failures.restart_die_filling_air  the die filling with air restarted at T/2: final
 #                                     snapshots, digests and CSV series bitwise equal
+#   cli.failures.output_unwritable    an output folder that cannot be made and a file-size limit
+#                                     (EFBIG): a message naming the file, earlier files intact
 # A value given with --set is the command line's error, not the file's.
 add_test(NAME cli.failures.set_value_names_command_line
          COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
@@ -31,8 +33,11 @@ if(CGDEM_TEST_PYTHON)
   add_test(NAME cli.failures.restart_die_filling_air
            COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/restart_die_filling.py --cgdem $<TARGET_FILE:cgdem>
                    --case ${PROJECT_SOURCE_DIR}/validation/die_filling/case_1_3.toml --work ${_out}/restart_die)
+  add_test(NAME cli.failures.output_unwritable
+           COMMAND ${CGDEM_TEST_PYTHON} ${_cli}/output_failures.py --cgdem $<TARGET_FILE:cgdem> --case ${_cli}/base.toml
+                   --work ${_out}/output)
   set_tests_properties(cli.failures.fuzzed_case_files cli.failures.kill_mid_write cli.failures.restart_die_filling_air
-                       PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+                       cli.failures.output_unwritable PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
 else()
   message(STATUS "cgdem: no python3: the cli.failures.* tests are not registered")
 endif()
