@@ -2,7 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <filesystem>
+#include <regex>
 #include <system_error>
 
 #include "app/air_case.hpp"
@@ -36,6 +41,26 @@ void make_output_folder(Config& cfg, const std::string& dir) {
   if (ec || !std::filesystem::is_directory(dir, ec))
     throw Error(fmt::format("cannot create the output folder '{}' (output.dir, from {}): {}", dir,
                             cfg.origin("output.dir"), ec ? ec.message() : "not a folder"));
+}
+
+// Temporaries `<file>.tmp-<pid>` (io/atomic_file.hpp) of a process that no longer exists
+// were left by a run that was killed while writing: removed, and said so. The files they
+// were to replace are complete (the previous version) or absent.
+void remove_stale_temporaries(const std::string& dir) {
+  static const std::regex tmp_re(R"(.*\.tmp-([0-9]{1,9}))");
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    std::smatch m;
+    if (!e.is_regular_file(ec) || !std::regex_match(name, m, tmp_re)) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(m[1].str()));
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to judge)
+    if (std::filesystem::remove(e.path(), ec)) removed.push_back(name);
+  }
+  if (!removed.empty())
+    fmt::print(stderr, "cgdem: removed {} temporary file(s) left in {} by an interrupted run: {}\n", removed.size(), dir,
+               fmt::join(removed, ", "));
 }
 
 std::string case_folder(const std::string& case_file) {
@@ -85,6 +110,7 @@ int run_case_file(const RunRequest& r) {
     return 0;
   }
   make_output_folder(cfg, c.output.dir);
+  remove_stale_temporaries(c.output.dir);
   const RunInfo info{r.case_file, cfg.resolved_toml(), r.restart};
   if (r.distributed) {
 #ifdef CGDEM_WITH_MPI

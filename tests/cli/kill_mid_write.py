@@ -11,7 +11,8 @@ temporary output file (`*.tmp-<pid>`) exists. Then
   * open every .h5 with h5py (every dataset read in full),
   * parse every .xdmf with xml.etree, and require each .h5 it references to exist,
   * restart from checkpoint.bin (`cgdem run CASE --restart DIR/checkpoint.bin`): it must
-    exit 0 and print the state digest of the uninterrupted run.
+    exit 0 and print the state digest of the uninterrupted run, and remove (and name) the
+    temporaries the killed run left.
 Prints how many kills landed while a file was being written (a temporary existed after
 the kill) and fails on any unreadable file, failed restart or differing digest.
 
@@ -96,7 +97,7 @@ def main():
     want = digest(ref.stdout.decode())
     print("reference run: %.2f s wall, state digest %s at t = %s s" % (t_ref, want[0], want[1]))
 
-    failures, mid_write, no_checkpoint = [], 0, 0
+    failures, mid_write, no_checkpoint, removed_after = [], 0, 0, 0
     for k in range(args.kills):
         d = os.path.join(args.work, "kill_%02d" % k)
         mode = ["random delay", "after the first checkpoint", "at a temporary"][k % 3]
@@ -148,9 +149,16 @@ def main():
         n_h5, n_xdmf, problems = check_folder(d)
         if problems:
             failures.append("kill %d: after the restart: %s" % (k, "; ".join(problems)))
-    print("%d kills: %d landed while a file was being written (a temporary was left), %d before the first "
-          "checkpoint; unreadable files, failed or differing restarts: %d" % (args.kills, mid_write, no_checkpoint,
-                                                                               len(failures)))
+        stale = glob.glob(os.path.join(d, "*.tmp-*"))
+        if stale:
+            failures.append("kill %d: temporaries of the killed run still there after the restart: %s" % (k, stale))
+        elif temps:
+            removed_after += 1
+            if "temporary file(s) left in" not in r.stderr.decode():
+                failures.append("kill %d: the restart removed the temporaries without saying so" % k)
+    print("%d kills: %d landed while a file was being written (a temporary was left; removed by the next run: %d), "
+          "%d before the first checkpoint; unreadable files, failed or differing restarts: %d" % (
+              args.kills, mid_write, removed_after, no_checkpoint, len(failures)))
     for f in failures:
         print("FAIL " + f)
     if mid_write == 0:
