@@ -16,6 +16,21 @@ namespace cgdem::app {
 
 namespace {
 
+// Upper bounds of the physical keys (stated in the messages through Range::describe and
+// in the key documentation, dem_case.hpp).
+constexpr double kMaxDiameter = 1.0;       // m, d_original
+constexpr double kMaxRatio = 100.0;        // coarse-grain ratio l
+constexpr double kMaxDensity = 1e5;        // kg/m^3 (the densest solids are ~2.3e4)
+constexpr double kMaxStiffness = 1e10;     // N/m
+constexpr double kMaxFriction = 5.0;       // Coulomb coefficient
+constexpr double kMaxCoordinate = 1e3;     // m, |domain.min|, |domain.max|
+constexpr double kMaxGravity = 1e5;        // m/s^2 per component
+constexpr double kMaxTime = 1e6;           // s, |time.start|, |time.end|
+constexpr double kMaxSteps = 1e12;         // DEM steps from time.start to time.end
+constexpr long kMaxParcels = 100000000;    // parcels of one [[particles.insert]]
+constexpr double kMaxCells = 2e8;          // neighbour-search cells over the domain
+constexpr double kMaxPacking = 0.7405;     // pi/sqrt(18): no packing of equal spheres is denser
+
 int species_index(const std::vector<Species>& sp, const Section& s, const std::string& key) {
   std::string name = s.string(key);
   for (size_t i = 0; i < sp.size(); ++i)
@@ -34,37 +49,53 @@ DemCase read_dem_case(Config& cfg) {
   // [particles]
   Section ps = root.section("particles");
   c.seed = static_cast<uint64_t>(ps.integer_or("seed", 1, Range::non_negative()));
-  c.dem.skin = ps.number_or("skin", 0.0, Range::non_negative());
+  c.dem.skin = ps.number_or("skin", 0.0, Range::closed(0, 1));
   auto specs = ps.sections("species");
   if (specs.empty()) ps.fail("species", "at least one [[particles.species]] is required");
   for (const Section& s : specs) {
     Species sp;
     sp.name = s.string("name");
-    sp.d_original = s.number("d_original", Range::positive());
-    sp.ratio = s.number_or("ratio", 1.0, Range::at_least(1.0));
-    sp.density = s.number("density", Range::positive());
+    sp.d_original = s.number("d_original", Range::open_closed(0, kMaxDiameter));
+    sp.ratio = s.number_or("ratio", 1.0, Range::closed(1.0, kMaxRatio));
+    sp.density = s.number("density", Range::open_closed(0, kMaxDensity));
     for (const auto& other : c.species)
       if (other.name == sp.name) s.fail("name", fmt::format("species \"{}\" is defined twice", sp.name));
     c.species.push_back(sp);
   }
+  {  // a skin beyond a few diameters makes the neighbour lists quadratic
+    double dmax = 0;
+    for (const auto& sp : c.species) dmax = std::max(dmax, sp.diameter());
+    if (c.dem.skin > 10 * dmax)
+      ps.fail("skin", fmt::format("{:g} m is more than 10 largest parcel diameters ({:g} m): the neighbour lists would "
+                                  "hold most pairs (0 = the default, 0.1 diameter)",
+                                  c.dem.skin, 10 * dmax));
+  }
 
   // [contact]
   Section cs = root.section("contact");
-  c.material.stiffness = cs.number("stiffness", Range::positive());
+  c.material.stiffness = cs.number("stiffness", Range::open_closed(0, kMaxStiffness));
   c.material.restitution = cs.number("restitution", Range::open_closed(0, 1));
-  c.material.friction = cs.number("friction", Range::non_negative());
+  c.material.friction = cs.number("friction", Range::closed(0, kMaxFriction));
   c.material.wall_restitution = cs.number_or("wall_restitution", c.material.restitution, Range::open_closed(0, 1));
-  c.material.wall_friction = cs.number_or("wall_friction", c.material.friction, Range::non_negative());
+  c.material.wall_friction = cs.number_or("wall_friction", c.material.friction, Range::closed(0, kMaxFriction));
 
   // [domain], [physics], [walls]
   Section ds = root.section("domain");
   c.dem.domain = {ds.vec3("min"), ds.vec3("max")};
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) {
+    if (!(std::fabs(c.dem.domain.lo[a]) <= kMaxCoordinate))
+      ds.fail("min", fmt::format("every coordinate must lie in [-{0:g}, {0:g}] m", kMaxCoordinate));
+    if (!(std::fabs(c.dem.domain.hi[a]) <= kMaxCoordinate))
+      ds.fail("max", fmt::format("every coordinate must lie in [-{0:g}, {0:g}] m", kMaxCoordinate));
     if (!(c.dem.domain.hi[a] > c.dem.domain.lo[a])) ds.fail("max", "must exceed domain.min on every axis");
+  }
   // Periodic axes, e.g. "y" for a slab: parcels leaving at one side come back at the other.
   const std::string periodic = ds.string_or("periodic", "none", {"none", "x", "y", "z", "xy", "xz", "yz", "xyz"});
   for (int a = 0; a < 3; ++a) c.dem.periodic[a] = periodic.find("xyz"[a]) != std::string::npos;
   c.dem.gravity = Section(&cfg, "physics").vec3_or("gravity", c.dem.gravity);
+  for (int a = 0; a < 3; ++a)
+    if (!(std::fabs(c.dem.gravity[a]) <= kMaxGravity))
+      Section(&cfg, "physics").fail("gravity", fmt::format("every component must lie in [-{0:g}, {0:g}] m/s^2", kMaxGravity));
   c.scene = root.has("walls") ? geometry::read_scene(root.section("walls")) : geometry::Scene{};
   if (root.has("walls")) {
     Section ws = root.section("walls");
@@ -72,6 +103,25 @@ DemCase read_dem_case(Config& cfg) {
     double rmax = 0;
     for (const auto& s : c.species) rmax = std::max(rmax, 0.5 * s.diameter());
     if (cutoff < rmax) ws.fail("sdf_cutoff", fmt::format("must be at least the largest parcel radius {:g} m", rmax));
+  }
+
+  {  // the neighbour search's cell grid over the domain (cells one interaction range wide)
+    double dmax = 0;
+    for (const auto& sp : c.species) dmax = std::max(dmax, sp.diameter());
+    const double range = dmax + (c.dem.skin > 0 ? c.dem.skin : 0.1 * dmax);
+    double cells = 1;
+    for (int a = 0; a < 3; ++a) cells *= std::floor((c.dem.domain.hi[a] - c.dem.domain.lo[a]) / range) + 1;
+    for (int a = 0; a < 3; ++a) {
+      const double L = c.dem.domain.hi[a] - c.dem.domain.lo[a];
+      if (c.dem.periodic[a] && L < 3 * range)
+        ds.fail("max", fmt::format("periodic length {:.4g} m along axis {} is shorter than three interaction ranges "
+                                   "(3 x {:.4g} m: largest diameter plus skin)",
+                                   L, "xyz"[a], range));
+    }
+    if (!(cells <= kMaxCells))
+      ds.fail("max", fmt::format("the domain spans {:.3g} neighbour-search cells of {:.4g} m (largest parcel diameter "
+                                 "plus skin), more than {:g}",
+                                 cells, range, kMaxCells));
   }
 
   // [[particles.insert]] and [[particles.file]]
@@ -88,13 +138,35 @@ DemCase read_dem_case(Config& cfg) {
     } else {
       r.lo = s.vec3("min");
       r.hi = s.vec3("max");
+      for (int a = 0; a < 3; ++a) {
+        if (!(r.hi[a] > r.lo[a])) s.fail("max", "must exceed min on every axis");
+        if (r.lo[a] < c.dem.domain.lo[a] || r.hi[a] > c.dem.domain.hi[a])
+          s.fail(r.lo[a] < c.dem.domain.lo[a] ? "min" : "max", "the region must lie inside the domain");
+      }
     }
     const Species& sp = c.species[r.species];
     if (s.has("count") && s.has("solid_volume")) s.fail("count", "give either count or solid_volume, not both");
-    if (s.has("solid_volume"))
-      r.count = std::lround(s.number("solid_volume", Range::positive()) / sp.volume());
-    else
-      r.count = s.integer("count", Range::at_least(1));
+    const std::string count_key = s.has("solid_volume") ? "solid_volume" : "count";
+    if (s.has("solid_volume")) {
+      const double v = s.number("solid_volume", Range::positive());
+      const double n = v / sp.volume();  // parcels
+      if (!(n >= 0.5))
+        s.fail("solid_volume", fmt::format("{:g} m^3 is less than half a parcel of species \"{}\" ({:.4g} m^3): it "
+                                           "would insert no parcel",
+                                           v, sp.name, sp.volume()));
+      if (!(n <= static_cast<double>(kMaxParcels)))
+        s.fail("solid_volume", fmt::format("{:g} m^3 is {:.4g} parcels of species \"{}\", more than {} per insert", v,
+                                           n, sp.name, kMaxParcels));
+      r.count = std::lround(n);
+    } else {
+      r.count = s.integer("count", Range::closed(1, static_cast<double>(kMaxParcels)));
+    }
+    const Vec3 box = r.hi - r.lo;
+    const double fraction = r.count * sp.volume() / (box.x * box.y * box.z);
+    if (!(fraction <= kMaxPacking))
+      s.fail(count_key, fmt::format("{} parcels of {:.4g} m^3 would fill {:.3g} of the region's {:.4g} m^3; no packing "
+                                    "of equal spheres exceeds {:.4f} (random insertion stops near 0.3)",
+                                    r.count, sp.volume(), fraction, box.x * box.y * box.z, kMaxPacking));
     r.velocity = s.vec3_or("velocity", {0, 0, 0});
     c.inserts.push_back(r);
   }
@@ -109,11 +181,14 @@ DemCase read_dem_case(Config& cfg) {
 
   // [time]
   Section ts = root.section("time");
-  c.dem.dt = ts.number("dt", Range::positive());
-  c.t_start = ts.number_or("start", 0.0);
-  c.t_end = ts.number("end");
+  c.dem.dt = ts.number("dt", Range::open_closed(0, 1));
+  c.t_start = ts.number_or("start", 0.0, Range::closed(-kMaxTime, kMaxTime));
+  c.t_end = ts.number("end", Range::closed(-kMaxTime, kMaxTime));
   if (!(c.t_end > c.t_start)) ts.fail("end", fmt::format("must be later than time.start = {:g} s", c.t_start));
-  double steps_per_collision = ts.number_or("min_steps_per_collision", 10.0, Range::at_least(2.0));
+  if (!((c.t_end - c.t_start) / c.dem.dt <= kMaxSteps))
+    ts.fail("dt", fmt::format("{:g} s makes {:.3g} steps from time.start to time.end, more than {:g}", c.dem.dt,
+                              (c.t_end - c.t_start) / c.dem.dt, kMaxSteps));
+  double steps_per_collision = ts.number_or("min_steps_per_collision", 10.0, Range::closed(2.0, 1e6));
   ContactTable table(c.species, c.material);
   double tc = table.min_collision_time();
   if (c.dem.dt > tc / steps_per_collision)
