@@ -178,7 +178,7 @@ CompareRun read_compare_run(const std::string& dir, const std::string& label) {
     r.revision = revision_in(head);
     if (const auto k = head.find(of); k != std::string::npos) r.case_file = head.substr(k + of.size());
   }
-  if (r.revision.empty()) r.revision = revision_in(first_line_of(d / "diagnostics.csv"));
+  if (r.revision.empty()) r.revision = r.diagnostics.revision();  // its "# cgdem <revision>, ..." line
   return r;
 }
 
@@ -290,18 +290,27 @@ Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& 
   const std::vector<double> ref_t = common_times(runs[0].diagnostics.col("t"), all);
   c.reference_points = ref_t.size();
 
-  std::vector<std::string> columns;
+  // Curves by quantity (mass_in_die, p_A: the names without their unit suffix), so that runs
+  // written before the names carried units compare with those written after.
+  std::vector<std::string> columns, units;
   for (const auto& r : runs)
-    for (const auto& n : r.diagnostics.names)
-      if (n != "t" && std::find(columns.begin(), columns.end(), n) == columns.end()) columns.push_back(n);
-  for (const auto& col : columns) {
+    for (size_t k = 0; k < r.diagnostics.names.size(); ++k) {
+      const std::string q = r.diagnostics.quantity(k);
+      if (q == "t" || std::find(columns.begin(), columns.end(), q) != columns.end()) continue;
+      columns.push_back(q);
+      units.push_back(r.diagnostics.units[k] == "1" ? "" : r.diagnostics.units[k]);
+    }
+  for (size_t k = 0; k < columns.size(); ++k)
+    if (units[k].empty()) units[k] = column_unit(columns[k]);
+  for (size_t q = 0; q < columns.size(); ++q) {
+    const std::string& col = columns[q];
     if (std::none_of(runs.begin(), runs.end(), [&](const CompareRun& r) { return has_finite(r, col); })) {
       c.no_values.push_back(col);
       continue;
     }
     const size_t n = runs.size();
     CurveComparison k{col,
-                      column_unit(col),
+                      units[q],
                       {},
                       std::vector<double>(n, kNaN),
                       std::vector<double>(n, kNaN),

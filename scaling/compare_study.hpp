@@ -1,7 +1,8 @@
 // `cgdem compare`: two or more finished runs of `cgdem run` side by side (the same case
 // with and without air, say), read from their folders:
 //
-//   * config.resolved.toml: the git revision (first line) and every resolved key, flattened
+//   * config.resolved.toml: the git revision (first line; else diagnostics.csv's "# cgdem
+//     <revision>, ..." line) and every resolved key, flattened
 //     to key paths (`air.enabled`, `diagnostics.pressure_cell[1].max`); the keys whose values
 //     are not the same in every run are the runs' configuration difference. Optional.
 //   * metrics.csv: every metric of any run, in the order first met; a NaN value or a metric a
@@ -19,8 +20,10 @@
 //     w_j trapezoidal weights; samples where either value is NaN are left out. D_2 is missing
 //     when no sample is finite in both or the first run's curve is zero there.
 //
-// Units come from the names: metrics by their SI suffix (io/metrics.hpp), diagnostics
-// columns by the die-filling conventions (app/die_diagnostics.hpp).
+// Units: metrics by their SI suffix (io/metrics.hpp); diagnostics columns from their
+// description lines (io/csv_series.hpp), the curves named by quantity (mass_in_die for
+// mass_in_die_kg, p_A for p_A_Pa) so that runs written before the names carried units
+// compare with those written after; for those, by the die-filling conventions (column_unit).
 #pragma once
 #include <map>
 #include <optional>

@@ -67,22 +67,22 @@ RunObservables read_observables(const std::string& dir, const ProfileSpec& s, do
     const CsvTable c = read_csv_table((d / "diagnostics.csv").string());
     // Rows from t0 on.
     size_t first = 0;
-    const auto& t_all = c.col("t");
+    const auto& t_all = c.col("t_s");
     while (first < t_all.size() && t_all[first] < t0 - 1e-9 * std::fabs(t_all.back() - t_all.front())) ++first;
     auto from_t0 = [&](const std::string& n) {
       const auto& v = c.col(n);
       return std::vector<double>(v.begin() + static_cast<long>(first), v.end());
     };
-    const std::vector<double> t = from_t0("t");
+    const std::vector<double> t = from_t0("t_s");
     if (!t.empty()) {
-      o.transfer_rate = {t, from_t0("transfer_rate")};
+      o.transfer_rate = {t, from_t0("transfer_rate_kg_s")};
       const Peak pk = peak(o.transfer_rate);
       o.scalars["transfer_rate_peak_kg_s"] = pk.value;
       o.scalars["transfer_rate_peak_time_s"] = pk.t;
-      o.scalars["fill_mass_kg"] = c.col("mass_in_die").back();
-      for (const auto& n : c.names)
-        if (n.rfind("p_", 0) == 0) {
-          o.pressure[n] = {t, from_t0(n)};
+      o.scalars["fill_mass_kg"] = c.col("mass_in_die_kg").back();
+      for (size_t k = 0; k < c.names.size(); ++k)
+        if (const std::string n = c.quantity(k); n.rfind("p_", 0) == 0) {  // p_A_Pa -> p_A
+          o.pressure[n] = {t, from_t0(c.names[k])};
           const Peak pp = peak(o.pressure[n]);
           o.scalars[n + "_peak_Pa"] = pp.value;
           o.scalars[n + "_peak_time_s"] = pp.t;

@@ -5,7 +5,8 @@
 
 Reads DIR/runs_compare.csv (label and folder of each run), DIR/curves_distance.csv (the
 compared columns and their units) and DIR/curves_compare.csv (the common time range), then
-each run's own diagnostics.csv at full resolution, and writes
+each run's own diagnostics.csv at full resolution (its columns by quantity: t_s as t,
+p_A_Pa as p_A, as in curves_distance.csv), and writes
   DIR/curves.png        mass in the die, transfer rate and every p_ cell pressure, the runs
                         overlaid, one panel each;
   DIR/curves_extra.png  every other compared column (mass_in_shoe, air fluxes, bubbles ...),
@@ -44,10 +45,24 @@ def number(text):
         return math.nan
 
 
+def quantity(name, comments):
+    """The column's quantity, as `cgdem compare` names its curves: the name without its unit
+    suffix (p_A_Pa -> p_A), the unit read from the "# <name>: <unit>, <description>" line;
+    the name itself in files written before the names carried units."""
+    for c in comments:
+        m = re.match(r"#\s*" + re.escape(name) + r": ([^,]+), ", c)
+        if m:
+            unit = m.group(1)
+            sfx = "" if unit == "1" else "_" + unit.replace("^", "").replace("/", "_").replace(" ", "_")
+            return name[: -len(sfx)] if sfx and name.endswith(sfx) and len(name) > len(sfx) else name
+    return name
+
+
 def diagnostics(folder):
-    """Columns of FOLDER/diagnostics.csv by name; restarted rows superseded (t increasing)."""
-    _, rows = rows_of(os.path.join(folder, "diagnostics.csv"))
-    head, body = rows[0], [r for r in rows[1:] if len(r) == len(rows[0])]
+    """Columns of FOLDER/diagnostics.csv by quantity (t, mass_in_die, p_A ...); restarted rows
+    superseded (t increasing)."""
+    comments, rows = rows_of(os.path.join(folder, "diagnostics.csv"))
+    head, body = [quantity(h, comments) for h in rows[0]], [r for r in rows[1:] if len(r) == len(rows[0])]
     kept = []
     it = head.index("t")
     for r in body:

@@ -171,7 +171,7 @@ bool finished_run(const RunPlan& r, const StudyInfo& info, std::string* why) {
   try {
     const CsvTable e = read_csv_table((dir / "energy.csv").string());
     const double span = info.t_end - info.t_start;
-    if (e.rows() && e.col("t").back() >= info.t_end - 1e-6 * span) return true;
+    if (e.rows() && e.col("t_s").back() >= info.t_end - 1e-6 * span) return true;
   } catch (const Error&) {
   }
   return say(fmt::format("the run in {} did not finish", r.dir));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -42,20 +43,28 @@ PressureSeries read_pressure_series(const std::string& run_dir) {
   std::vector<size_t> p_col;
   size_t t_col = std::string::npos, n_fields = 0;
   std::string line;
+  double grid_t0 = 0, grid_dt = 0;  // "# rows: at t = T0 s + k DT s" (app/run_schedule.hpp)
   for (int n = 1; std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.rfind("# rows: at t = ", 0) == 0 && std::sscanf(line.c_str(), "# rows: at t = %lf s + k %lf s", &grid_t0, &grid_dt) != 2)
+      grid_dt = 0;
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line);
     if (n_fields == 0) {  // the column line
       n_fields = f.size();
+      // t_s and p_<cell>_Pa (io/csv_series.hpp), or t and p_<cell> (files written before).
+      for (size_t c = 0; c < f.size(); ++c)
+        if (f[c] == "t_s" || (f[c] == "t" && t_col == std::string::npos)) t_col = c;
+      const bool units = f[t_col == std::string::npos ? 0 : t_col] == "t_s";
       for (size_t c = 0; c < f.size(); ++c) {
-        if (f[c] == "t") t_col = c;
-        if (f[c].rfind("p_", 0) == 0 && f[c].size() > 2) {
+        std::string cell = f[c].rfind("p_", 0) == 0 ? f[c].substr(2) : "";
+        if (units) cell = cell.size() > 3 && cell.compare(cell.size() - 3, 3, "_Pa") == 0 ? cell.substr(0, cell.size() - 3) : "";
+        if (!cell.empty()) {
           p_col.push_back(c);
-          s.cells.push_back(f[c].substr(2));
+          s.cells.push_back(cell);
         }
       }
-      if (t_col == std::string::npos) throw Error(fmt::format("{}: no column 't' in '{}'", s.source, line));
+      if (t_col == std::string::npos) throw Error(fmt::format("{}: no column 't_s' (or 't') in '{}'", s.source, line));
       if (p_col.empty()) throw Error(fmt::format("{}: no pressure column (p_<cell>) in '{}'", s.source, line));
       s.p.resize(p_col.size());
       continue;
@@ -63,6 +72,8 @@ PressureSeries read_pressure_series(const std::string& run_dir) {
     if (f.size() != n_fields)
       throw Error(fmt::format("{}:{}: {} values, the column line has {}", s.source, n, f.size(), n_fields));
     const double t = number(f[t_col], fmt::format("{}:{}", s.source, n));
+    // A run's last row is its final state, off the row grid when time.end is: left out.
+    if (grid_dt > 0 && std::abs((t - grid_t0) / grid_dt - std::round((t - grid_t0) / grid_dt)) > 1e-3) continue;
     // A restarted run continues the file from its checkpoint: rows of the interrupted run
     // at or after the restart time are superseded by the new ones.
     while (!s.t.empty() && s.t.back() >= t) {

@@ -1,7 +1,11 @@
 // The pressure series of a run folder for `cgdem spectrum`: diagnostics.csv (written by
-// `cgdem run` with [walls.die_filling]) holds '#' comment lines, then the column line
-// `t,...,p_<cell>,...` and one row per output time. The pressure columns are found by
-// their `p_` prefix, any number of them.
+// `cgdem run` with [walls.die_filling]) starts with the column line `t_s,...,p_<cell>_Pa,...`,
+// then '#' lines (provenance, the columns' units and descriptions: io/csv_series.hpp) and
+// one row per output time. The pressure columns are found by their `p_` prefix and `_Pa`
+// suffix, any number of them. Files written before the names carried units ('#' lines,
+// then `t,...,p_<cell>,...`) are read too. When the file states its row grid ("# rows: at t =
+// T0 s + k DT s", app/run_schedule.hpp), a row off it (the final state of a run whose
+// time.end is not on the grid) is left out.
 //
 // Uniform sampling: the spectra (spectrum.hpp) assume x[n] = x(t_0 + n dt). The intervals
 // t[i+1] - t[i] must equal their median dt within a relative 1e-3 (a timing jitter below

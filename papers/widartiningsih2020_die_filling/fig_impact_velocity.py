@@ -23,17 +23,17 @@ from figlib import plt
 
 def arrivals(run):
     im = run.impacts()
-    for col in ("t", "speed_down", "mass"):
+    for col in ("t_s", "speed_down_m_s", "mass_kg"):
         if col not in im:
             raise fl.InputError(f"{run.dir}/impacts.csv: no column '{col}'")
-    if im["t"].size == 0:
+    if im["t_s"].size == 0:
         raise fl.InputError(f"{run.dir}/impacts.csv: no impacts (the powder never reached the die floor)")
     return im
 
 
 def within(im, window):
-    sel = im["t"] <= im["t"].min() + window
-    return im["speed_down"][sel], im["mass"][sel]
+    sel = im["t_s"] <= im["t_s"].min() + window
+    return im["speed_down_m_s"][sel], im["mass_kg"][sel]
 
 
 def main():
@@ -47,8 +47,8 @@ def main():
     a = p.parse_args()
     groups = fl.by_die_type(fl.load_runs(a.runs))
     data = {r.case: arrivals(r) for g in groups.values() for r in g}
-    vmax = max(float(im["speed_down"].max()) for im in data.values())
-    vmin = min(0.0, min(float(im["speed_down"].min()) for im in data.values()))
+    vmax = max(float(im["speed_down_m_s"].max()) for im in data.values())
+    vmin = min(0.0, min(float(im["speed_down_m_s"].min()) for im in data.values()))
     edges = np.arange(np.floor(vmin / a.bin) * a.bin, vmax + a.bin, a.bin)
 
     fig, axes = plt.subplots(1, len(groups), figsize=(4.4 * len(groups), 3.4), squeeze=False)
@@ -57,7 +57,7 @@ def main():
         top = 0.0
         for run in runs:
             im = data[run.case]
-            t0 = float(im["t"].min())
+            t0 = float(im["t_s"].min())
             window = a.window or float(run.diag.get("impact_window", 5e-3))
             speed, mass = within(im, window)
             mean = float(np.sum(mass * speed) / np.sum(mass))

@@ -2,7 +2,7 @@
 """Figs. 7 and 12 of the paper: gauge air pressure averaged over the measurement cells
 A, B and C in the die, for both die types.
 
-Reads, per run: config.resolved.toml and diagnostics.csv (columns p_A, p_B, p_C: the
+Reads, per run: config.resolved.toml and diagnostics.csv (columns p_A_Pa, p_B_Pa, p_C_Pa: the
 pressure minus the still-air hydrostatic pressure, averaged over the air cells of each box,
 one row every 0.1 ms). Where the cells are: README of validation/die_filling (A above the
 shallow floor, B above the deep floor, C in the deep section just below the table top; the
@@ -30,13 +30,13 @@ def main():
         series = []
         for run in runs:
             d = run.diagnostics()
-            keep = d["t"] >= 0
+            keep = d["t_s"] >= 0
             if not keep.any():
                 raise fl.InputError(f"{run.dir}/diagnostics.csv: no rows at t >= 0 yet")
             for cell in CELLS:
-                if "p_" + cell not in d:
-                    raise fl.InputError(f"{run.dir}/diagnostics.csv: no column p_{cell} (run without air?)")
-            series.append((run, d["t"][keep], {cell: d["p_" + cell][keep] for cell in CELLS}))
+                if f"p_{cell}_Pa" not in d:
+                    raise fl.InputError(f"{run.dir}/diagnostics.csv: no column p_{cell}_Pa (run without air?)")
+            series.append((run, d["t_s"][keep], {cell: d[f"p_{cell}_Pa"][keep] for cell in CELLS}))
         tp = fl.PAPER[die_type]["peak_time"]
         for r, cell in enumerate(CELLS):
             ax = axes[r, c]

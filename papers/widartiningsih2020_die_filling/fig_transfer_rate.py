@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figs. 6 and 11 of the paper: mass transfer rate of powder from the shoe into the die.
 
-Reads, per run: config.resolved.toml and diagnostics.csv (column transfer_rate: backward
+Reads, per run: config.resolved.toml and diagnostics.csv (column transfer_rate_kg_s: backward
 difference of the mass in the die over diagnostics.rate_window, 5 ms by default, one row
 every 0.1 ms). Only t >= 0 (the shoe moving) is drawn. A dot marks each run's largest rate;
 the dashed line the time of the paper's maximum (about 0.19 s for die type 1, 0.18 s for
@@ -25,7 +25,7 @@ def main():
     for ax, (die_type, runs) in zip(axes[0], groups.items()):
         for run in runs:
             d = run.diagnostics()
-            t, rate = d["t"], d["transfer_rate"] * 1e3  # g/s
+            t, rate = d["t_s"], d["transfer_rate_kg_s"] * 1e3  # g/s
             keep = t >= 0
             t, rate = t[keep], rate[keep]
             if t.size == 0:

@@ -58,14 +58,33 @@ def require(path, what=""):
     return path
 
 
+# The unit of each column name cgdem wrote before the names carried their unit (the files
+# then began with '#' lines and a column line of bare names): a file of that layout is read
+# with the names of today (t -> t_s, p_A -> p_A_Pa, speed_down -> speed_down_m_s).
+OLD_UNITS = {"t": "s", "mass_in_die": "kg", "transfer_rate": "kg/s", "impacts": "1", "mass_in_shoe": "kg",
+             "Q_cavity": "m^3/s", "Q_shoe_walls": "m^3/s", "Q_open_mouth": "m^3/s", "bubbles": "1",
+             "V_bubbles": "m^3", "V_bubble_max": "m^3", "z_bubble": "m", "z_bubble_top": "m",
+             "V_bubbles_shoe": "m^3", "V_sealed": "m^3", "id": "1", "speed_down": "m/s", "mass": "kg"}
+
+
+def new_name(old):
+    unit = OLD_UNITS.get(old, "Pa" if old.startswith("p_") and len(old) > 2 else "1")
+    return old if unit == "1" else old + "_" + unit.replace("^", "").replace("/", "_").replace(" ", "_")
+
+
 def read_csv(path):
-    """A cgdem CSV (optional '#' comment lines, then a header) as {column: numpy array}."""
+    """A cgdem CSV as {column: numpy array}: the column line first, then '#' lines (provenance,
+    each column's unit and description), then the rows; or, written before, without the
+    description lines and with bare names (renamed to today's names, new_name)."""
     require(path)
     with open(path, newline="") as f:
-        rows = [r for r in csv.reader(line for line in f if not line.startswith("#")) if r]
+        lines = f.read().splitlines()
+    rows = [r for r in csv.reader(line for line in lines if not line.startswith("#")) if r]
     if not rows:
         raise InputError(f"{path}: no header")
     names, body = rows[0], rows[1:]
+    if not any(line.startswith(f"# {names[0]}: ") for line in lines):  # no descriptions: the layout before units
+        names = [new_name(n) for n in names]
     try:
         data = np.array([[float(v) for v in r] for r in body], dtype=float).reshape(len(body), len(names))
     except ValueError as e:

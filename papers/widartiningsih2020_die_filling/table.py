@@ -50,7 +50,7 @@ def column(run):
     d = run.diagnostics()
     paper = fl.PAPER[run.die_type]
     tp = paper["peak_time"]
-    t, mass = d["t"], d["mass_in_die"]
+    t, mass = d["t_s"], d["mass_in_die_kg"]
     final = float(mass[-1])
     full = t[np.argmax(mass >= 0.99 * final)] if final > 0 else np.nan
     at_tp = float(np.interp(tp, t, mass)) if t[0] <= tp <= t[-1] else np.nan

@@ -133,25 +133,4 @@ uint64_t state_digest(const DemSolver& dem, const fluid::FluidState* air) {
   return h;
 }
 
-void truncate_csv_after(const std::string& path, double t) {
-  std::ifstream in(path);
-  if (!in) return;
-  std::string line, kept;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    if (line[0] == '#' || !header_seen) {
-      if (line[0] != '#') header_seen = true;
-      kept += line + "\n";
-      continue;
-    }
-    char* end = nullptr;
-    const double ti = std::strtod(line.c_str(), &end);
-    if (end == line.c_str() || *end != ',') break;  // a torn last line
-    if (ti > t + 1e-12) break;
-    kept += line + "\n";
-  }
-  io::write_file_atomic(path, kept);
-}
-
 }  // namespace cgdem::app

@@ -43,7 +43,4 @@ void get_air(io::ArchiveReader& r, fluid::FluidState& air);
 
 uint64_t state_digest(const DemSolver& dem, const fluid::FluidState* air);
 
-// Keeps the comment lines, the header and the rows whose first column (time) is <= t.
-void truncate_csv_after(const std::string& path, double t);
-
 }  // namespace cgdem::app

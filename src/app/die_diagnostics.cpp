@@ -116,7 +116,15 @@ PathFlux DieDiagnostics::path_fluxes(const fluid::FluidState& air, double t) con
   return q;
 }
 
-std::string DieDiagnostics::surface_header() const { return "t_s,bin,x_cavity_m,x_m,solid_height_m,surface_m,parcels"; }
+io::CsvColumns DieDiagnostics::surface_columns() const {
+  return {{"t_s", "s", "time of the profile"},
+          {"bin", "1", fmt::format("bin index along the cavity's length, 0 .. {}", spec_.surface_bins - 1)},
+          {"x_cavity_m", "m", "bin centre from the cavity's rear wall (in the shoe's frame)"},
+          {"x_m", "m", "bin centre in the domain's frame"},
+          {"solid_height_m", "m", "solid volume of the bin's parcels over the bin's area (the bed's height at packing 1)"},
+          {"surface_m", "m", "bed surface above the table top: the lowest top z + r of the bin's highest 2 % of parcels (nan: empty bin)"},
+          {"parcels", "1", "parcels in the bin"}};
+}
 
 std::string DieDiagnostics::surface_rows(double t, const Particles& p) const {
   const auto& d = spec_.die;
@@ -284,10 +292,32 @@ void DieDiagnostics::load(io::ArchiveReader& r) {
   r.get_vector(hit_), r.get_vector(impacts_), r.get_vector(history_);
 }
 
-std::string DieDiagnostics::csv_header() const {
-  std::string h = "t,mass_in_die,transfer_rate,impacts";
-  for (const auto& c : spec_.cells) h += ",p_" + c.name;
-  return h + ",mass_in_shoe,Q_cavity,Q_shoe_walls,Q_open_mouth,bubbles,V_bubbles,V_bubble_max,z_bubble,z_bubble_top,V_bubbles_shoe,V_sealed";
+io::CsvColumns DieDiagnostics::csv_columns() const {
+  io::CsvColumns c = {
+      {"t_s", "s", "time"},
+      {"mass_in_die_kg", "kg", "solid mass of the parcels whose centre lies in the die (below the table top, in the mouth)"},
+      {"transfer_rate_kg_s", "kg/s",
+       fmt::format("mass transfer rate into the die, backward difference of mass_in_die_kg over {:g} s", spec_.rate_window)},
+      {"impacts", "1", "parcels that have reached the die floor so far"}};
+  for (const auto& cell : spec_.cells)
+    c.push_back({"p_" + cell.name + "_Pa", "Pa",
+                 fmt::format("gauge pressure (still-air hydrostatic removed) averaged over the air cells in box {} "
+                             "[{:g} {:g} {:g}] .. [{:g} {:g} {:g}] m (nan without air)",
+                             cell.name, cell.lo.x, cell.lo.y, cell.lo.z, cell.hi.x, cell.hi.y, cell.hi.z)});
+  const io::CsvColumns rest = {
+      {"mass_in_shoe_kg", "kg", "solid mass of the parcels above the table top inside the cavity's footprint (moving with the shoe)"},
+      {"Q_cavity_m3_s", "m^3/s", "air volume flux out of the die through the mouth plane under the cavity (nan without air)"},
+      {"Q_shoe_walls_m3_s", "m^3/s", "the same under the shoe's walls (air leaving through the shoe-table gap)"},
+      {"Q_open_mouth_m3_s", "m^3/s", "the same where the mouth is open to the room"},
+      {"bubbles", "1", "number of bubbles (air enclosed by powder; nan without air or over MPI ranks)"},
+      {"V_bubbles_m3", "m^3", "total bubble volume"},
+      {"V_bubble_max_m3", "m^3", "volume of the largest bubble"},
+      {"z_bubble_m", "m", "centroid height of the largest bubble"},
+      {"z_bubble_top_m", "m", "top of the largest bubble"},
+      {"V_bubbles_shoe_m3", "m^3", "bubble volume above the table top (risen into the shoe)"},
+      {"V_sealed_m3", "m^3", "air sealed by walls alone"}};
+  c.insert(c.end(), rest.begin(), rest.end());
+  return c;
 }
 
 std::string DieDiagnostics::csv_line(const DiagnosticsRow& r) const {
@@ -297,6 +327,19 @@ std::string DieDiagnostics::csv_line(const DiagnosticsRow& r) const {
                    r.z_bubble_top, r.v_bubbles_shoe, r.v_sealed})
     s += fmt::format(",{:.9g}", v);
   return s;
+}
+
+io::CsvColumns DieDiagnostics::impact_columns() {
+  return {{"id", "1", "parcel id"},
+          {"t_s", "s", "time the parcel's lowest point reached the impact band above the die floor"},
+          {"speed_down_m_s", "m/s", "its downward speed on the way there"},
+          {"mass_kg", "kg", "its solid mass"}};
+}
+
+std::string DieDiagnostics::impact_rows() const {
+  std::string rows;
+  for (const auto& im : impacts_) rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
+  return rows;
 }
 
 }  // namespace cgdem::app

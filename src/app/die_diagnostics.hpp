@@ -52,6 +52,7 @@
 #include "fluid/fluid_state.hpp"
 #include "geometry/die_filling.hpp"
 #include "io/archive.hpp"
+#include "io/csv_series.hpp"
 #include "particles/particles.hpp"
 
 namespace cgdem::app {
@@ -111,8 +112,8 @@ class DieDiagnostics {
   // The air paths' fluxes over the z-faces of `air` (the whole grid or one block: the sums
   // of the blocks add up, each face counted by the block that owns it, k < nz).
   PathFlux path_fluxes(const fluid::FluidState& air, double t) const;
-  // shoe_surface.csv: its header and the rows of one profile at time t.
-  std::string surface_header() const;
+  // shoe_surface.csv: its columns (io/csv_series.hpp) and the rows of one profile at time t.
+  io::CsvColumns surface_columns() const;
   std::string surface_rows(double t, const Particles& p) const;
   double surface_interval() const { return spec_.surface_interval; }
   // The shoe's displacement along x at time t [m].
@@ -128,8 +129,13 @@ class DieDiagnostics {
   std::vector<PressureSum> pressure_sums(const fluid::FluidState& air, const fluid::MacGrid& whole,
                                          const fluid::FluidParams& fp) const;
   std::vector<double> mean_pressures(const std::vector<PressureSum>& sums) const;
-  std::string csv_header() const;
+  // diagnostics.csv: its columns (name with SI unit, unit, description; one p_<cell>_Pa per
+  // pressure cell) and one row (no trailing newline).
+  io::CsvColumns csv_columns() const;
   std::string csv_line(const DiagnosticsRow& r) const;
+  // impacts.csv: its columns and rows (one per parcel that has reached the floor).
+  static io::CsvColumns impact_columns();
+  std::string impact_rows() const;
 
   struct Impact {
     int64_t id;

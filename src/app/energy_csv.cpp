@@ -4,9 +4,29 @@
 
 namespace cgdem::app {
 
-std::string energy_csv_header() {
-  return "t,E_kin_trans,E_kin_rot,E_kin_rot_orig,E_pot,E_elastic,E_diss_damping,E_diss_friction,W_walls,W_air,"
-         "E_balance,px,py,pz,mass,particles,removed,inside_walls";
+const io::CsvColumns& energy_csv_columns() {
+  static const io::CsvColumns columns = {
+      {"t_s", "s", "time"},
+      {"E_kin_trans_J", "J", "translational kinetic energy of the parcels, sum of m v^2 / 2"},
+      {"E_kin_rot_J", "J", "rotational kinetic energy of the parcels, sum of I w^2 / 2 (in E_balance_J)"},
+      {"E_kin_rot_orig_J", "J",
+       "rotational kinetic energy of the l^3 originals each parcel stands for, E_kin_rot_J / l^2 (not in E_balance_J)"},
+      {"E_pot_J", "J", "gravitational potential energy of the parcels, -sum of m g.x"},
+      {"E_elastic_J", "J", "elastic energy stored in the contact springs (normal and tangential)"},
+      {"E_diss_damping_J", "J", "energy dissipated by the normal contact dashpots since the start"},
+      {"E_diss_friction_J", "J", "energy dissipated by the tangential dashpots and sliding since the start"},
+      {"W_walls_J", "J", "work done on the parcels by moving walls since the start"},
+      {"W_air_J", "J", "work done on the parcels by the air (drag and pressure force) since the start"},
+      {"E_balance_J", "J",
+       "budget closure E_kin_trans + E_kin_rot + E_pot + E_elastic + E_diss - W_walls - W_air (constant when closed)"},
+      {"px_kg_m_s", "kg m/s", "total momentum of the parcels, x component"},
+      {"py_kg_m_s", "kg m/s", "total momentum of the parcels, y component"},
+      {"pz_kg_m_s", "kg m/s", "total momentum of the parcels, z component"},
+      {"mass_kg", "kg", "solid mass of the parcels present"},
+      {"particles", "1", "parcels present"},
+      {"removed", "1", "parcels removed so far (left the domain)"},
+      {"inside_walls", "1", "parcel centres inside a wall (tunnelled)"}};
+  return columns;
 }
 
 std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls) {

@@ -1,18 +1,19 @@
 // energy.csv: the particle energy and momentum budget as a time series, one row per
-// output.energy_interval. Header and row are defined together here so that columns cannot
-// drift apart; readers (scaling/) look columns up by name, never by position.
-// E_kin_rot is the parcels' own 1/2 I w^2 (in E_balance); E_kin_rot_orig that of the l^3
-// originals each parcel stands for, smaller by l^2 (eq. 5; EnergyBudget). Energies in J,
-// momentum in kg m/s, mass in kg.
+// output.energy_interval. The columns (name with SI unit, unit, description) and the row are
+// defined together here so that they cannot drift apart; the file's layout is that of
+// io/csv_series.hpp, and readers (scaling/) look columns up by name, never by position.
+// E_kin_rot_J is the parcels' own 1/2 I w^2 (in E_balance_J); E_kin_rot_orig_J that of the
+// l^3 originals each parcel stands for, smaller by l^2 (eq. 5; EnergyBudget).
 #pragma once
 #include <string>
 
+#include "io/csv_series.hpp"
 #include "solvers/dem/dem_solver.hpp"
 
 namespace cgdem::app {
 
-// Column names, comma-separated (no trailing newline).
-std::string energy_csv_header();
+// t_s, E_kin_trans_J, ..., particles, removed, inside_walls.
+const io::CsvColumns& energy_csv_columns();
 
 // One row (no trailing newline). `e` must already carry work_fluid (DemSolver::fluid_work()).
 std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -106,12 +107,20 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   // Time series: on a restart the rows after the checkpoint's time are dropped and the
   // file continues; otherwise it starts afresh.
   const std::string series_comment = "case " + info.case_file;
-  auto open_csv = [&](const std::string& name, const std::string& header) {
-    return open_series(c.output.dir, name, header, series_comment, restart, dem->time());
+  auto open_csv = [&](const std::string& name, const io::CsvColumns& columns) {
+    return open_series(c.output.dir, name, columns, series_comment, restart, dem->time());
   };
-  std::FILE* energy = open_csv("energy.csv", energy_csv_header());
-  std::FILE* diag_csv = diag_spec.enabled ? open_csv("diagnostics.csv", diag.csv_header()) : nullptr;
-  std::FILE* surface_csv = diag_spec.enabled ? open_csv("shoe_surface.csv", diag.surface_header()) : nullptr;
+  std::unique_ptr<io::CsvSeries> energy = open_csv("energy.csv", energy_csv_columns());
+  // diagnostics.csv is sampled uniformly (run_schedule.hpp): its rows fall on a grid whose
+  // interval is a whole multiple of at least the largest fluid step.
+  const double largest_step = with_air ? air_case.coupled.dt_fluid_max : 0.0;
+  const std::string diag_note = OutputSchedule(c, diag_spec, dem->time(), largest_step).diagnostics_note(diag_spec.interval);
+  std::unique_ptr<io::CsvSeries> diag_csv =
+      diag_spec.enabled ? open_series(c.output.dir, "diagnostics.csv", diag.csv_columns(), series_comment, restart,
+                                      dem->time(), {diag_note})
+                        : nullptr;
+  std::unique_ptr<io::CsvSeries> surface_csv =
+      diag_spec.enabled ? open_csv("shoe_surface.csv", diag.surface_columns()) : nullptr;
   const std::string last_good = (out / "last_good.h5").string();
   const std::string checkpoint = (out / "checkpoint.bin").string();
   // Parcels are never lost silently: the count (present + removed) must stay what it was,
@@ -138,21 +147,28 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     e.work_fluid = dem->fluid_work();
     const long inside = count_inside_walls(*dem);
     account_parcels(inside);
-    std::fprintf(energy, "%s\n", energy_csv_row(*dem, e, inside).c_str());
-    std::fflush(energy);
+    energy->row(energy_csv_row(*dem, e, inside));
+    energy->flush();
   };
-  auto write_diagnostics = [&]() {
+  auto diagnostics_now = [&]() {
+    return diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr, with_air ? &air_case.fluid : nullptr,
+                    with_air ? &fluid->ibm().alpha_cell : nullptr);
+  };
+  // The rows a step passed (interpolated between `before`, the state at the step's start, and
+  // the state at its end), then the state at its end when it is due.
+  std::optional<DiagnosticsRow> before;
+  auto write_diagnostics = [&](const std::vector<double>& passed = {}, bool at_end = true) {
     if (!diag_csv) return;
-    std::fprintf(diag_csv, "%s\n",
-                 diag.csv_line(diag.row(dem->time(), dem->particles(), with_air ? &air : nullptr,
-                                        with_air ? &air_case.fluid : nullptr,
-                                        with_air ? &fluid->ibm().alpha_cell : nullptr)).c_str());
-    std::fflush(diag_csv);
+    const DiagnosticsRow now = diagnostics_now();
+    for (double tk : passed) diag_csv->row(diag.csv_line(before ? interpolate_row(*before, now, tk) : now));
+    if (at_end) diag_csv->row(diag.csv_line(now));
+    diag_csv->flush();
+    before.reset();
   };
   auto write_surface = [&]() {
     if (!surface_csv) return;
-    std::fputs(diag.surface_rows(dem->time(), dem->particles()).c_str(), surface_csv);
-    std::fflush(surface_csv);
+    surface_csv->rows(diag.surface_rows(dem->time(), dem->particles()));
+    surface_csv->flush();
   };
   auto check_health = [&]() {
     check_particles(*dem, c.output.max_speed);
@@ -183,12 +199,16 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   PhaseTimers out_timers;
   const int t_observe = out_timers.id("die diagnostics"), t_series = out_timers.id("CSV series");
   const int t_snap = out_timers.id("snapshots"), t_ckpt = out_timers.id("checkpoints");
-  OutputSchedule schedule(c, diag_spec, dem->time());
+  OutputSchedule schedule(c, diag_spec, dem->time(), largest_step);
   ProgressLine progress(c, dem->time(), isatty(STDOUT_FILENO));
   const bool tty = isatty(STDOUT_FILENO);
   const long observe_every = std::max(1L, std::lround(1e-4 / c.dem.dt));  // vacuum: diagnostics every 0.1 ms
   long particle_steps = 0;
   while (!schedule.finished(dem->time())) {
+    if (diag_csv && schedule.passes_diagnostics(dem->time(), dem->time() + (with_air ? coupled->substeps() : 1) * c.dem.dt)) {
+      auto ts = out_timers.scope(t_observe);
+      before = diagnostics_now();  // this step passes a row time: its start state, to interpolate
+    }
     if (with_air) {
       const long before = dem->steps();
       CoupledStepStats st = coupled->step();
@@ -211,9 +231,9 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       check_health();
       write_energy();
     }
-    if (due.diagnostics) {
+    if (due.diagnostics || !due.diagnostics_passed.empty()) {
       auto ts = out_timers.scope(t_series);
-      write_diagnostics();
+      write_diagnostics(due.diagnostics_passed, due.diagnostics);
     }
     if (due.surface) {
       auto ts = out_timers.scope(t_series);
@@ -239,11 +259,9 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     progress.update(t, particle_steps, due.last);
   }
   progress.finish();
-  std::fclose(energy);
-  if (diag_csv) std::fclose(diag_csv);
-  if (surface_csv) std::fclose(surface_csv);
+  energy.reset(), diag_csv.reset(), surface_csv.reset();
 
-  if (diag_spec.enabled) write_impacts(c.output.dir, diag);
+  if (diag_spec.enabled) write_impacts(c.output.dir, diag, series_comment);
 
   const double wall = progress.seconds();
   io::write_metrics((out / "metrics.csv").string(),

@@ -13,26 +13,45 @@
 
 namespace cgdem::app {
 
-OutputSchedule::OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now)
+OutputSchedule::OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now, double largest_step)
     : t_start_(c.t_start),
       t_end_(c.t_end),
       tiny_(1e-9 * c.dem.dt),
+      land_(1e-3 * c.dem.dt),
       energy_(c.output.energy_interval),
       snapshot_(c.output.snapshot_interval),
       checkpoint_(c.output.checkpoint_interval),
-      diag_(diag.interval),
+      diag_(diag.interval * std::max(1.0, std::ceil(std::max(largest_step, c.dem.dt) / diag.interval - 1e-9))),
       surface_(diag.surface_interval),
+      largest_step_(std::max(largest_step, c.dem.dt)),
       with_diag_(diag.enabled),
       settled_pending_(t_now < -1e-9 * c.dem.dt) {
   next_energy_ = next_after(energy_, t_now);
   next_snap_ = next_after(snapshot_, t_now);
   next_checkpoint_ = next_after(checkpoint_, t_now);
-  next_diag_ = next_after(diag_, t_now);
   next_surface_ = next_after(surface_, t_now);
+  // The first row time after t_now (the row at t_now is written before the loop).
+  next_diag_ = static_cast<long>(std::floor((t_now - t_start_ + land_) / diag_)) + 1;
 }
 
 double OutputSchedule::next_after(double interval, double t) const {
   return t_start_ + interval * (std::floor((t - t_start_) / interval + 1e-9) + 1);
+}
+
+bool OutputSchedule::passes_diagnostics(double t0, double t1) const {
+  if (!with_diag_) return false;
+  const double tk = diag_time(next_diag_);
+  return tk > t0 + land_ && tk < t1 - land_;
+}
+
+std::string OutputSchedule::diagnostics_note(double configured_interval) const {
+  return fmt::format("rows: at t = {:.9g} s + k {:.9g} s (diagnostics.interval {:.9g} s{}); a step that passes a "
+                     "row time without ending on it has that row interpolated linearly between its start and end "
+                     "(counts from the nearer); the last row is the final state",
+                     t_start_, diag_, configured_interval,
+                     diag_ > configured_interval * (1 + 1e-9)
+                         ? fmt::format(" rounded up to a multiple of at least the largest step {:.9g} s", largest_step_)
+                         : "");
 }
 
 OutputSchedule::Due OutputSchedule::after_step(double t) {
@@ -40,21 +59,42 @@ OutputSchedule::Due OutputSchedule::after_step(double t) {
   d.last = finished(t);
   d.snapshot = t >= next_snap_ - tiny_ || d.last;
   d.energy = t >= next_energy_ - tiny_ || d.snapshot;
-  d.diagnostics = with_diag_ && (t >= next_diag_ - tiny_ || d.last);
   d.surface = with_diag_ && (t >= next_surface_ - tiny_ || d.last);
   d.checkpoint = t >= next_checkpoint_ - tiny_ || d.last;
   d.settled = settled_pending_ && t >= -tiny_;
+  if (with_diag_) {
+    while (diag_time(next_diag_) < t - land_) d.diagnostics_passed.push_back(diag_time(next_diag_++));
+    if (std::fabs(diag_time(next_diag_) - t) <= land_) d.diagnostics = true, ++next_diag_;
+    d.diagnostics = d.diagnostics || d.last;
+  }
   auto advance = [&](bool due, double& next, double interval) {
     if (due)
       while (next <= t + tiny_) next += interval;
   };
   advance(d.energy, next_energy_, energy_);
-  advance(d.diagnostics, next_diag_, diag_);
   advance(d.surface, next_surface_, surface_);
   advance(d.snapshot, next_snap_, snapshot_);
   advance(d.checkpoint, next_checkpoint_, checkpoint_);
   if (d.settled) settled_pending_ = false;
   return d;
+}
+
+DiagnosticsRow interpolate_row(const DiagnosticsRow& a, const DiagnosticsRow& b, double t) {
+  const double w = b.t > a.t ? std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0) : 1.0;
+  auto lerp = [w](double x, double y) { return (1 - w) * x + w * y; };
+  const DiagnosticsRow& near = w < 0.5 ? a : b;
+  DiagnosticsRow r = near;
+  r.t = t;
+  r.mass_in_die = lerp(a.mass_in_die, b.mass_in_die);
+  r.transfer_rate = lerp(a.transfer_rate, b.transfer_rate);
+  for (size_t c = 0; c < r.pressure.size() && c < a.pressure.size() && c < b.pressure.size(); ++c)
+    r.pressure[c] = lerp(a.pressure[c], b.pressure[c]);
+  r.mass_in_shoe = lerp(a.mass_in_shoe, b.mass_in_shoe);
+  r.q_cavity = lerp(a.q_cavity, b.q_cavity), r.q_walls = lerp(a.q_walls, b.q_walls), r.q_open = lerp(a.q_open, b.q_open);
+  r.v_bubbles = lerp(a.v_bubbles, b.v_bubbles), r.v_bubble_max = lerp(a.v_bubble_max, b.v_bubble_max);
+  r.z_bubble = lerp(a.z_bubble, b.z_bubble), r.z_bubble_top = lerp(a.z_bubble_top, b.z_bubble_top);
+  r.v_bubbles_shoe = lerp(a.v_bubbles_shoe, b.v_bubbles_shoe), r.v_sealed = lerp(a.v_sealed, b.v_sealed);
+  return r;  // impacts and bubbles: the nearer row's
 }
 
 ProgressLine::ProgressLine(const DemCase& c, double t_first, bool tty)
@@ -76,26 +116,24 @@ void ProgressLine::finish() const {
   if (tty_) fmt::print("\n");
 }
 
-std::FILE* open_series(const std::string& dir, const std::string& name, const std::string& header,
-                       const std::string& comment, bool restart, double t) {
-  const std::string path = (std::filesystem::path(dir) / name).string();
-  if (restart && std::filesystem::exists(path)) {
-    truncate_csv_after(path, t);
-    std::FILE* f = std::fopen(path.c_str(), "a");
-    if (!f) throw Error("cannot append to " + path);
-    return f;
-  }
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw Error("cannot write " + path);
-  std::fprintf(f, "# cgdem %s, %s\n%s\n", kGitRevision, comment.c_str(), header.c_str());
-  return f;
+std::vector<std::string> csv_provenance(const std::string& comment) {
+  return {fmt::format("cgdem {}, {}", kGitRevision, comment),
+          "configuration: config.resolved.toml in this folder; units and columns: the lines below (SI units, the "
+          "unit's suffix on every name, unit 1: dimensionless)"};
 }
 
-void write_impacts(const std::string& dir, const DieDiagnostics& diag) {
-  std::string rows = "id,t,speed_down,mass\n";
-  for (const auto& im : diag.impacts())
-    rows += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", im.id, im.t, im.speed_down, im.mass);
-  io::write_file_atomic((std::filesystem::path(dir) / "impacts.csv").string(), rows);
+std::unique_ptr<io::CsvSeries> open_series(const std::string& dir, const std::string& name,
+                                           const io::CsvColumns& columns, const std::string& comment, bool restart,
+                                           double t, const std::vector<std::string>& notes) {
+  const std::string path = (std::filesystem::path(dir) / name).string();
+  std::vector<std::string> provenance = csv_provenance(comment);
+  provenance.insert(provenance.end(), notes.begin(), notes.end());
+  return std::make_unique<io::CsvSeries>(path, columns, provenance, restart ? std::optional<double>(t) : std::nullopt);
+}
+
+void write_impacts(const std::string& dir, const DieDiagnostics& diag, const std::string& comment) {
+  io::write_csv_file((std::filesystem::path(dir) / "impacts.csv").string(), DieDiagnostics::impact_columns(),
+                     csv_provenance(comment), diag.impact_rows());
 }
 
 void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec) {

@@ -3,19 +3,33 @@
 // their files at the same times and report progress alike.
 //
 // Output times are multiples of the intervals counted from t_start, also after a restart:
-// energy.csv every output.energy_interval (and with every snapshot), diagnostics.csv every
-// diagnostics.interval, shoe_surface.csv every diagnostics.surface_interval, a snapshot every output.snapshot_interval, checkpoint.bin every
-// output.checkpoint_interval; all of them at the last step. A run that starts before the
-// shoe moves (t < 0) saves the state of t = 0 once, as settled.bin.
+// energy.csv every output.energy_interval (and with every snapshot), shoe_surface.csv every
+// diagnostics.surface_interval, a snapshot every output.snapshot_interval, checkpoint.bin
+// every output.checkpoint_interval, each at the first step that reaches its time; all of
+// them at the last step. A run that starts before the shoe moves (t < 0) saves the state of
+// t = 0 once, as settled.bin.
+//
+// diagnostics.csv is sampled uniformly (its pressures are what `cgdem spectrum` reads): rows
+// at t_start + k dT exactly, dT = diagnostics.interval rounded up to a whole multiple that is
+// at least the largest step (air.dt_max with air; dT = diagnostics.interval when they agree,
+// as in the cases of validation/), so that a step of the usual size ends on every row time.
+// A step that ends on a row time (within 1e-3 DEM steps) writes the state at its end; one
+// that passes a row time without ending on it (a fluid step shortened by the CFL limit) has
+// that row interpolated linearly in time between the states at its start and its end
+// (interpolate_row; counts from the nearer one). The steps themselves are never changed. The
+// last step writes the final state too, on the grid when time.end is.
 #pragma once
 #include <cstdio>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "app/checkpoint.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "core/timers.hpp"
 #include "fluid/fluid_state.hpp"
+#include "io/csv_series.hpp"
 #include "io/grid_snapshot_series.hpp"
 #include "solvers/coupled/coupled_solver.hpp"
 
@@ -23,22 +37,40 @@ namespace cgdem::app {
 
 class OutputSchedule {
  public:
-  // t_now: the time the run starts from (t_start, or a checkpoint's time).
-  OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now);
+  // t_now: the time the run starts from (t_start, or a checkpoint's time); largest_step: the
+  // longest step the run takes (air.dt_max with air, 0: the DEM step).
+  OutputSchedule(const DemCase& c, const DiagnosticsSpec& diag, double t_now, double largest_step = 0);
   struct Due {
     bool energy = false, diagnostics = false, surface = false, snapshot = false, checkpoint = false, settled = false, last = false;
+    // diagnostics.csv rows the step passed without ending on them (to interpolate), in order;
+    // `diagnostics`: a row of the state at the step's end.
+    std::vector<double> diagnostics_passed;
   };
-  // What is due after a step that ended at time t; moves the next times past t.
+  // What is due after a step that ended at time t (the previous one ended at the time of the
+  // previous call, or t_now); moves the next times past t.
   Due after_step(double t);
   bool finished(double t) const { return t >= t_end_ - tiny_; }
+  // Whether a step from t0 to t1 will pass a diagnostics row time without ending on it (the
+  // state at t0 is then needed for the interpolation).
+  bool passes_diagnostics(double t0, double t1) const;
+  double diagnostics_interval() const { return diag_; }  // dT above [s]
+  // The line diagnostics.csv states its sampling with.
+  std::string diagnostics_note(double configured_interval) const;
 
  private:
   double next_after(double interval, double t) const;
-  double t_start_, t_end_, tiny_;
+  double diag_time(long k) const { return t_start_ + static_cast<double>(k) * diag_; }
+  double t_start_, t_end_, tiny_, land_;
   double energy_, snapshot_, checkpoint_, diag_, surface_;  // intervals
-  double next_energy_, next_snap_, next_checkpoint_, next_diag_, next_surface_;
+  double next_energy_, next_snap_, next_checkpoint_, next_surface_;
+  long next_diag_;  // index k of the next row time
+  double largest_step_;
   bool with_diag_, settled_pending_;
 };
+
+// A diagnostics.csv row at time t between the rows a (earlier) and b (later): every value
+// linear in time, the counts (impacts, bubbles) those of the nearer row.
+DiagnosticsRow interpolate_row(const DiagnosticsRow& a, const DiagnosticsRow& b, double t);
 
 // The progress line: on a terminal rewritten every 0.5 s, otherwise a plain line every
 // output.progress_interval seconds of wall time; always at the last step. The ETA comes
@@ -57,14 +89,21 @@ class ProgressLine {
   double last_ = 0;
 };
 
-// `<dir>/<name>` for a time series: on a restart (when it exists) truncated after t and
-// opened to append; otherwise started afresh with a comment line (`comment` after the
-// revision, e.g. the case file) and the column header. Throws cgdem::Error.
-std::FILE* open_series(const std::string& dir, const std::string& name, const std::string& header,
-                       const std::string& comment, bool restart, double t);
+// The provenance lines of every CSV a run writes: "cgdem <revision>, <comment>" (comment:
+// the case file, the ranks) and where the resolved configuration is.
+std::vector<std::string> csv_provenance(const std::string& comment);
+
+// `<dir>/<name>` for a time series (layout of io/csv_series.hpp): on a restart (when it
+// exists) kept up to time t and continued, so that it ends as the uninterrupted run's file
+// (tests/cli/restart.cmake compares them); otherwise started afresh with the column line,
+// the provenance (csv_provenance(comment)) and the column descriptions. Throws cgdem::Error.
+// `notes`: more provenance lines (diagnostics.csv: its sampling).
+std::unique_ptr<io::CsvSeries> open_series(const std::string& dir, const std::string& name,
+                                           const io::CsvColumns& columns, const std::string& comment, bool restart,
+                                           double t, const std::vector<std::string>& notes = {});
 
 // impacts.csv of the die-filling diagnostics (written atomically).
-void write_impacts(const std::string& dir, const DieDiagnostics& diag);
+void write_impacts(const std::string& dir, const DieDiagnostics& diag, const std::string& comment);
 
 // The closing lines about the die filling: the front's arrival and the impact velocity.
 void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec);

@@ -79,28 +79,28 @@ int main(int argc, char** argv) {
     auto col = [&](const Row& r, const std::string& n) {
       return r.values[std::find(r.names.begin(), r.names.end(), n) - r.names.begin()];
     };
-    for (const char* exact : {"particles", "removed", "t"}) {
+    for (const char* exact : {"particles", "removed", "t_s"}) {
       const double x = col(ra, exact), y = col(rb, exact);
-      const bool same = exact == std::string("t") ? std::fabs(x - y) <= 1e-12 * std::fabs(x) : x == y;
+      const bool same = exact == std::string("t_s") ? std::fabs(x - y) <= 1e-12 * std::fabs(x) : x == y;
       fmt::print("{:>16}: {:.10g} vs {:.10g}{}\n", exact, x, y, same ? "" : "  <-- differs");
       ok = ok && same;
     }
     {
-      const double x = col(ra, "mass"), y = col(rb, "mass"), d = std::fabs(x - y) / std::fabs(x);
-      fmt::print("{:>16}: relative difference {:.3e} (tol 1e-12)\n", "mass", d);
+      const double x = col(ra, "mass_kg"), y = col(rb, "mass_kg"), d = std::fabs(x - y) / std::fabs(x);
+      fmt::print("{:>16}: relative difference {:.3e} (tol 1e-12)\n", "mass_kg", d);
       ok = ok && d <= 1e-12;
     }
     double e_scale = 0, p_scale = 0;
     for (size_t c = 0; c < ra.names.size(); ++c) {
       const std::string& n = ra.names[c];
-      const bool momentum = n == "px" || n == "py" || n == "pz";
+      const bool momentum = n == "px_kg_m_s" || n == "py_kg_m_s" || n == "pz_kg_m_s";
       double& s = momentum ? p_scale : e_scale;
       if (n[0] == 'E' || n[0] == 'W' || momentum) s = std::max({s, std::fabs(ra.values[c]), std::fabs(rb.values[c])});
     }
     if (momentum_scale > 0) p_scale = momentum_scale;
     for (size_t c = 0; c < ra.names.size(); ++c) {
       const std::string& n = ra.names[c];
-      const bool momentum = n == "px" || n == "py" || n == "pz";
+      const bool momentum = n == "px_kg_m_s" || n == "py_kg_m_s" || n == "pz_kg_m_s";
       if (!(n[0] == 'E' || n[0] == 'W' || momentum)) continue;
       const double scale = momentum ? p_scale : e_scale;
       const double d = scale > 0 ? std::fabs(ra.values[c] - rb.values[c]) / scale : 0.0;

@@ -21,10 +21,10 @@ TOL = {  # relative, unless noted
     "p_A_peak_Pa": 0.10, "p_B_peak_Pa": 0.10, "p_C_peak_Pa": 0.10,
     "p_A_mean_Pa": 0.10, "p_B_mean_Pa": 0.10, "p_C_mean_Pa": 0.10,
 }
-SERIES_TOL = {"transfer_rate": 0.10, "p_A": 0.05, "p_B": 0.05, "p_C": 0.05}
+SERIES_TOL = {"transfer_rate_kg_s": 0.10, "p_A_Pa": 0.05, "p_B_Pa": 0.05, "p_C_Pa": 0.05}
 
 
-SMOOTH_TOL = {"transfer_rate": 0.05, "p_A": 0.05, "p_B": 0.05, "p_C": 0.05}
+SMOOTH_TOL = {"transfer_rate_kg_s": 0.05, "p_A_Pa": 0.05, "p_B_Pa": 0.05, "p_C_Pa": 0.05}
 
 
 def smooth(t, v, width=5e-3):
@@ -63,9 +63,27 @@ def metrics(d):
     return out
 
 
+# The unit of each column name cgdem wrote before the names carried their unit (the files
+# then began with '#' lines and a column line of bare names): such files are read with the
+# names of today (t -> t_s, mass_in_die -> mass_in_die_kg, p_A -> p_A_Pa).
+OLD_UNITS = {"t": "s", "mass_in_die": "kg", "transfer_rate": "kg/s", "mass_in_shoe": "kg", "Q_cavity": "m^3/s",
+             "Q_shoe_walls": "m^3/s", "Q_open_mouth": "m^3/s", "V_bubbles": "m^3", "V_bubble_max": "m^3",
+             "z_bubble": "m", "z_bubble_top": "m", "V_bubbles_shoe": "m^3", "V_sealed": "m^3"}
+
+
+def new_name(old):
+    unit = OLD_UNITS.get(old, "Pa" if old.startswith("p_") and len(old) > 2 else None)
+    return old if unit is None else old + "_" + unit.replace("^", "").replace("/", "_")
+
+
 def series(d):
-    rows = [l.strip() for l in open(d + "/diagnostics.csv") if l.strip() and not l.startswith("#")]
+    """diagnostics.csv by column: the column line first, then '#' lines and rows (or, written
+    before, '#' lines, then the column line with bare names)."""
+    lines = [l.strip() for l in open(d + "/diagnostics.csv") if l.strip()]
+    rows = [l for l in lines if not l.startswith("#")]
     head = rows[0].split(",")
+    if not any(l.startswith(f"# {head[0]}: ") for l in lines):  # no descriptions: before units
+        head = [new_name(h) for h in head]
     data = {h: [] for h in head}
     for r in rows[1:]:
         for h, v in zip(head, r.split(",")):
@@ -92,7 +110,7 @@ def main():
             bad |= not ok
             print(f"  {k:28s} {a:12.6g} {b:12.6g}  diff {d:9.3e} (tol {tol:g}{' s' if k == 'front_time_s' else ''}) "
                   f"{'ok' if ok else 'EXCEEDS'}")
-        t_ref, t_run = sr["t"], s["t"]
+        t_ref, t_run = sr["t_s"], s["t_s"]
         for k, tol in SERIES_TOL.items():
             num, n, scale = 0.0, 0, max(abs(v) for v in sr[k])
             j = 0
@@ -118,7 +136,7 @@ def main():
         # round-off does not decorrelate. Also the reference's own fluctuation (raw minus
         # smoothed, rms over t >= 0), the scale of what two decorrelated runs differ by.
         for k, tol in SMOOTH_TOL.items():
-            ra, rb = smooth(sr["t"], sr[k]), smooth(s["t"], s[k])
+            ra, rb = smooth(sr["t_s"], sr[k]), smooth(s["t_s"], s[k])
             fa, fb = max(abs(v) for v in ra.values()), max(abs(v) for v in rb.values())
             d_peak = abs(fb - fa) / fa
             diffs, fl = [], []
@@ -126,7 +144,7 @@ def main():
                 w = interp(rb, t)
                 if w is not None:
                     diffs.append((w - v) ** 2)
-            for t, v in zip(sr["t"], sr[k]):
+            for t, v in zip(sr["t_s"], sr[k]):
                 if t >= 0 and t in ra:
                     fl.append((v - ra[t]) ** 2)
             rms = math.sqrt(sum(diffs) / max(len(diffs), 1)) / fa

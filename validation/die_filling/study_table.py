@@ -15,10 +15,28 @@ import sys
 import numpy as np
 
 
+# The unit of each column name cgdem wrote before the names carried their unit (the files
+# then began with '#' lines and a column line of bare names): such files are read with the
+# names of today (t -> t_s, mass_in_die -> mass_in_die_kg, p_A -> p_A_Pa).
+OLD_UNITS = {"t": "s", "mass_in_die": "kg", "transfer_rate": "kg/s", "mass_in_shoe": "kg", "Q_cavity": "m^3/s",
+             "Q_shoe_walls": "m^3/s", "Q_open_mouth": "m^3/s", "V_bubbles": "m^3", "V_bubble_max": "m^3",
+             "z_bubble": "m", "z_bubble_top": "m", "V_bubbles_shoe": "m^3", "V_sealed": "m^3"}
+
+
+def new_name(old):
+    unit = OLD_UNITS.get(old, "Pa" if old.startswith("p_") and len(old) > 2 else None)
+    return old if unit is None else old + "_" + unit.replace("^", "").replace("/", "_")
+
+
 def read_csv(path):
+    """Columns by name: the column line first, then '#' lines and rows (or, written before,
+    '#' lines, then the column line with bare names)."""
     with open(path) as f:
-        lines = [l for l in f if not l.startswith("#")]
+        all_lines = f.readlines()
+    lines = [l for l in all_lines if not l.startswith("#")]
     names = lines[0].strip().split(",")
+    if not any(l.startswith(f"# {names[0]}: ") for l in all_lines):  # no descriptions: before units
+        names = [new_name(n) for n in names]
     rows = [l.strip().split(",") for l in lines[1:] if l.strip()]
     return {n: np.array([float(r[c]) for r in rows]) for c, n in enumerate(names)}
 
@@ -34,49 +52,49 @@ def metrics(path):
 
 
 def at(d, col, t):
-    i = int(np.argmin(abs(d["t"] - t)))
-    return d[col][i] if abs(d["t"][i] - t) < 1e-3 else float("nan")
+    i = int(np.argmin(abs(d["t_s"] - t)))
+    return d[col][i] if abs(d["t_s"][i] - t) < 1e-3 else float("nan")
 
 
 def column(run_dir):
     d = read_csv(run_dir + "/diagnostics.csv")
     m = metrics(run_dir + "/metrics.csv")
-    t = d["t"]
+    t = d["t_s"]
     v = {}
     v["front reaches the die floor [s]"] = f"{m.get('front_time_s', float('nan')):.4f}"
     v["mean impact velocity [m/s]"] = f"{m.get('mean_impact_velocity_m_s', float('nan')):.3f}"
     for tt in (0.08, 0.10, 0.12, 0.14, 0.16, 0.18):
-        v[f"mass in the die at {tt:.2f} s [g]"] = f"{1e3 * at(d, 'mass_in_die', tt):.3f}"
+        v[f"mass in the die at {tt:.2f} s [g]"] = f"{1e3 * at(d, 'mass_in_die_kg', tt):.3f}"
     ok = t >= 0
-    i = int(np.argmax(np.where(ok, d["transfer_rate"], -1)))
-    v["transfer-rate maximum [g/s] at [s]"] = f"{1e3 * d['transfer_rate'][i]:.2f} at {t[i]:.3f}"
-    cells = [c for c in ("p_A", "p_B", "p_C") if c in d]
+    i = int(np.argmax(np.where(ok, d["transfer_rate_kg_s"], -1)))
+    v["transfer-rate maximum [g/s] at [s]"] = f"{1e3 * d['transfer_rate_kg_s'][i]:.2f} at {t[i]:.3f}"
+    cells = [c for c in ("p_A_Pa", "p_B_Pa", "p_C_Pa") if c in d]
     if cells and np.isfinite(d[cells[0]]).any():
         p = np.mean([d[c] for c in cells], axis=0)
         w = (t >= 0.05) & (t <= 0.11)
         j = int(np.argmax(np.where(w, p, -np.inf)))
-        v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = f"{at(dict(t=t, p=p), 'p', 0.08):.1f} / {at(dict(t=t, p=p), 'p', 0.10):.1f}"
+        v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = f"{at(dict(t_s=t, p=p), 'p', 0.08):.1f} / {at(dict(t_s=t, p=p), 'p', 0.10):.1f}"
         v["its maximum over 0.05-0.11 s [Pa] at [s]"] = f"{p[j]:.1f} at {t[j]:.3f}"
         late = t >= 0.11
-        k = int(np.argmax(np.where(late, d["p_B"], -np.inf)))
-        v["cell B peak after 0.11 s [Pa] at [s]"] = f"{d['p_B'][k]:.1f} at {t[k]:.3f}"
+        k = int(np.argmax(np.where(late, d["p_B_Pa"], -np.inf)))
+        v["cell B peak after 0.11 s [Pa] at [s]"] = f"{d['p_B_Pa'][k]:.1f} at {t[k]:.3f}"
     else:
         v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = "—"
-    if "V_bubble_max" in d and np.isfinite(d["V_bubble_max"]).any():
-        vb = np.where(ok & np.isfinite(d["V_bubble_max"]), d["V_bubble_max"], 0)
+    if "V_bubble_max_m3" in d and np.isfinite(d["V_bubble_max_m3"]).any():
+        vb = np.where(ok & np.isfinite(d["V_bubble_max_m3"]), d["V_bubble_max_m3"], 0)
         i = int(np.argmax(vb))
         v["largest entrapped air [mm^3] at [s]"] = f"{1e9 * vb[i]:.0f} at {t[i]:.3f}"
-        vs = np.where(ok & np.isfinite(d["V_bubbles_shoe"]), d["V_bubbles_shoe"], 0)
+        vs = np.where(ok & np.isfinite(d["V_bubbles_shoe_m3"]), d["V_bubbles_shoe_m3"], 0)
         i = int(np.argmax(vs))
         v["bubble air above the table top, max [mm^3] at [s]"] = f"{1e9 * vs[i]:.1f} at {t[i]:.3f}"
-    if "Q_cavity" in d and np.isfinite(d["Q_cavity"]).any():
+    if "Q_cavity_m3_s" in d and np.isfinite(d["Q_cavity_m3_s"]).any():
         dt = np.diff(t, prepend=t[0])
-        tot = {k: float(np.nansum(np.where(ok, d[k], 0) * dt)) for k in ("Q_cavity", "Q_shoe_walls", "Q_open_mouth")}
+        tot = {k: float(np.nansum(np.where(ok, d[k], 0) * dt)) for k in ("Q_cavity_m3_s", "Q_shoe_walls_m3_s", "Q_open_mouth_m3_s")}
         v["air out of the die via cavity / under walls / open mouth [mm^3]"] = " / ".join(
-            f"{1e9 * tot[k]:.0f}" for k in ("Q_cavity", "Q_shoe_walls", "Q_open_mouth"))
-    if "mass_in_shoe" in d:
-        v["powder in the shoe at 0.25 s / end [g]"] = f"{1e3 * at(d, 'mass_in_shoe', 0.25):.3f} / {1e3 * d['mass_in_shoe'][-1]:.3f}"
-    v["powder in the die at the end [g] (t_end [s])"] = f"{1e3 * d['mass_in_die'][-1]:.3f} ({t[-1]:.3f})"
+            f"{1e9 * tot[k]:.0f}" for k in ("Q_cavity_m3_s", "Q_shoe_walls_m3_s", "Q_open_mouth_m3_s"))
+    if "mass_in_shoe_kg" in d:
+        v["powder in the shoe at 0.25 s / end [g]"] = f"{1e3 * at(d, 'mass_in_shoe_kg', 0.25):.3f} / {1e3 * d['mass_in_shoe_kg'][-1]:.3f}"
+    v["powder in the die at the end [g] (t_end [s])"] = f"{1e3 * d['mass_in_die_kg'][-1]:.3f} ({t[-1]:.3f})"
     return v
 
 
