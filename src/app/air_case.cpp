@@ -86,7 +86,7 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
                                        "xyz"[axis]));
   }
 
-  a.exchange.law = coupling::parse_drag_law(s.string_or("drag", "ergun-wen-yu", {"ergun-wen-yu", "wen-yu", "ergun"}));
+  a.exchange.law = coupling::parse_drag_law(s.string_or("drag", "ergun-wen-yu", coupling::drag_law_names()));
   a.exchange.air = {f.rho, f.mu};
   a.exchange.eps_min = s.number_or("eps_min", 0.2, Range{0.0, 1.0, true, true});
   a.exchange.bc = f.bc;

@@ -12,7 +12,7 @@
 //                             # viscosity); a whole number of DEM steps
 //   cfl = 0.5
 //   time_order = 2            # 1: forward Euler predictor, 2: Heun
-//   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter
+//   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter; the others: coupling/drag.hpp (kDragLaws)
 //   eps_min = 0.2             # lower bound of the mapped void fraction
 //   feedback = true           # false: one-way coupling (the air ignores the parcels)
 //   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha

@@ -1,14 +1,22 @@
 #include "coupling/drag.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "core/error.hpp"
 
 namespace cgdem::coupling {
 
+std::vector<std::string> drag_law_names() {
+  std::vector<std::string> names;
+  for (const auto& row : kDragLaws) names.emplace_back(row.name);
+  return names;
+}
+
 DragLaw parse_drag_law(const std::string& name) {
-  if (name == "ergun-wen-yu") return DragLaw::ErgunWenYu;
-  if (name == "wen-yu") return DragLaw::WenYu;
-  if (name == "ergun") return DragLaw::Ergun;
-  throw Error("unknown drag law '" + name + "' (expected \"ergun-wen-yu\", \"wen-yu\" or \"ergun\")");
+  for (const auto& row : kDragLaws)
+    if (name == row.name) return row.law;
+  throw Error(fmt::format("unknown drag law '{}' (allowed: {})", name, fmt::join(drag_law_names(), ", ")));
 }
 
 }  // namespace cgdem::coupling

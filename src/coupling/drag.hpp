@@ -16,6 +16,7 @@
 #pragma once
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace cgdem::coupling {
 
@@ -41,19 +42,60 @@ inline double wen_yu_beta_over_solid(double eps, double slip, double d_o, const 
   return 0.75 * cd_times_slip(eps, slip, d_o, air) * eps * air.rho / d_o * std::pow(eps, -2.65);
 }
 
-enum class DragLaw { ErgunWenYu, WenYu, Ergun };
+// Di Felice (1994), a single correlation over the whole range of eps with a
+// Reynolds-dependent voidage exponent (not one of the paper's laws; an alternative for
+// sensitivity studies, `air.drag = "di-felice"`):
+//   beta/(1-eps) = 3/4 C_D rho |slip| eps^(2 - chi) / d_O,
+//   C_D = (0.63 + 4.8 / sqrt(Re))^2,  chi = 3.7 - 0.65 exp(-(1.5 - log10 Re)^2 / 2),
+//   Re = eps rho d_O |slip| / mu as in eq. (11).
+// C_D |slip| is evaluated as (0.63 sqrt(|slip|) + 4.8 sqrt(mu / (eps rho d_O)))^2, the same
+// number without 0 * inf at zero slip, where chi -> 3.7.
+inline double di_felice_beta_over_solid(double eps, double slip, double d_o, const AirProperties& air) {
+  const double re = eps * air.rho * d_o * slip / air.mu;
+  const double chi = re > 0 ? 3.7 - 0.65 * std::exp(-0.5 * std::pow(1.5 - std::log10(re), 2)) : 3.7;
+  const double root = 0.63 * std::sqrt(slip) + 4.8 * std::sqrt(air.mu / (eps * air.rho * d_o));
+  return 0.75 * root * root * air.rho / d_o * std::pow(eps, 2 - chi);
+}
 
-// beta/(1-eps) of the chosen law (the paper's: Ergun below eps = 0.8, Wen-Yu above).
-inline double beta_over_solid(DragLaw law, double eps, double slip, double d_o, const AirProperties& air) {
-  switch (law) {
-    case DragLaw::Ergun: return ergun_beta_over_solid(eps, slip, d_o, air);
-    case DragLaw::WenYu: return wen_yu_beta_over_solid(eps, slip, d_o, air);
-    case DragLaw::ErgunWenYu: break;
-  }
+// beta/(1-eps) of the paper's law: Ergun below eps = 0.8, Wen-Yu above.
+inline double ergun_wen_yu_beta_over_solid(double eps, double slip, double d_o, const AirProperties& air) {
   return eps <= 0.8 ? ergun_beta_over_solid(eps, slip, d_o, air) : wen_yu_beta_over_solid(eps, slip, d_o, air);
 }
 
-// "ergun-wen-yu" | "wen-yu" | "ergun"; throws cgdem::Error otherwise.
+// The drag-law registry: one row per law (its enum value, the name the case files use,
+// one line of documentation, the function). The config reader, its error message, the
+// docs and the tests take the names from here. Adding a law: a function above, an enum
+// value, a row.
+enum class DragLaw { ErgunWenYu, WenYu, Ergun, DiFelice };
+
+struct DragLawInfo {
+  DragLaw law;
+  const char* name;
+  const char* doc;
+  double (*beta_over_solid)(double eps, double slip, double d_o, const AirProperties& air);
+};
+
+inline constexpr DragLawInfo kDragLaws[] = {
+    {DragLaw::ErgunWenYu, "ergun-wen-yu", "the paper's: Ergun (eq. 9) at eps <= 0.8, Wen-Yu (eq. 10) above",
+     ergun_wen_yu_beta_over_solid},
+    {DragLaw::WenYu, "wen-yu", "Wen-Yu (eq. 10) at every eps", wen_yu_beta_over_solid},
+    {DragLaw::Ergun, "ergun", "Ergun (eq. 9) at every eps", ergun_beta_over_solid},
+    {DragLaw::DiFelice, "di-felice", "Di Felice (1994): one correlation, voidage exponent chi(Re)",
+     di_felice_beta_over_solid},
+};
+
+// The row of a law (the rows are in enum order; tests/coupling/drag_test.cpp checks it).
+inline const DragLawInfo& drag_law_info(DragLaw law) { return kDragLaws[static_cast<int>(law)]; }
+
+// beta/(1-eps) of the chosen law.
+inline double beta_over_solid(DragLaw law, double eps, double slip, double d_o, const AirProperties& air) {
+  return drag_law_info(law).beta_over_solid(eps, slip, d_o, air);
+}
+
+// The registered names, in table order.
+std::vector<std::string> drag_law_names();
+
+// The law of a registered name; throws cgdem::Error naming the allowed ones otherwise.
 DragLaw parse_drag_law(const std::string& name);
 
 }  // namespace cgdem::coupling

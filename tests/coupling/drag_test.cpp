@@ -80,3 +80,59 @@ TEST(Drag, WenYuMinimumFluidizationVelocity) {
   std::printf("[ drag ] Wen-Yu U_mf = %.2f mm/s (docs/references.md: 7.7)\n", umf * 1e3);
   EXPECT_NEAR(umf, 7.7e-3, 0.05e-3);
 }
+
+TEST(Drag, RegistryRowsAreInEnumOrderAndNamesRoundTrip) {
+  const auto names = drag_law_names();
+  ASSERT_EQ(names.size(), std::size(kDragLaws));
+  for (std::size_t i = 0; i < std::size(kDragLaws); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(kDragLaws[i].law), i) << kDragLaws[i].name;
+    EXPECT_EQ(parse_drag_law(names[i]), kDragLaws[i].law);
+    std::printf("[ drag ] registry: %-13s %s\n", kDragLaws[i].name, kDragLaws[i].doc);
+  }
+  try {
+    parse_drag_law("stokes");
+    FAIL() << "no error for an unknown law";
+  } catch (const cgdem::Error& e) {
+    const std::string msg = e.what();
+    for (const auto& n : names) EXPECT_NE(msg.find(n), std::string::npos) << msg;
+  }
+}
+
+TEST(Drag, DiFeliceMatchesItsPerParticleForm) {
+  // Di Felice (1994), written as the force on one sphere of diameter d in a bed of voidage
+  // eps with superficial velocity U = eps |slip|: f = C_D rho (pi d^2 / 8) U^2 eps^-chi,
+  // C_D = (0.63 + 4.8 Re^-1/2)^2, Re = rho d U / mu, chi = 3.7 - 0.65 exp(-(1.5 - log10 Re)^2/2).
+  // n f / |slip| with n = (1 - eps) / (pi d^3 / 6) spheres per volume is beta, so
+  // beta / (1 - eps) must equal di_felice_beta_over_solid.
+  const double d = 125e-6;
+  double worst = 0;
+  for (double eps : {0.4, 0.6, 0.8, 0.95, 1.0})
+    for (double slip : {1e-4, 1e-2, 0.3, 5.0}) {
+      const double U = eps * slip, re = air.rho * d * U / air.mu;
+      const double cd = std::pow(0.63 + 4.8 / std::sqrt(re), 2);
+      const double chi = 3.7 - 0.65 * std::exp(-std::pow(1.5 - std::log10(re), 2) / 2);
+      const double f = cd * air.rho * M_PI * d * d / 8 * U * U * std::pow(eps, -chi);
+      const double n = (1 - eps) / (M_PI * d * d * d / 6);
+      const double got = di_felice_beta_over_solid(eps, slip, d, air);
+      if (eps < 1) worst = std::max(worst, std::fabs(got - n * f / slip / (1 - eps)) / got);
+      EXPECT_EQ(beta_over_solid(DragLaw::DiFelice, eps, slip, d, air), got);
+    }
+  std::printf("[ drag ] Di Felice against its per-particle form: worst rel err %.2e (tolerance 1e-12)\n", worst);
+  EXPECT_LT(worst, 1e-12);
+  // Zero slip: finite, the Re -> 0 limit 3/4 * 4.8^2 mu / (eps rho d) * rho / d * eps^(2 - 3.7),
+  // 4 % below Stokes' 18 mu / d^2 at eps = 1 (Dallavalle's C_D tends to 23.04 / Re, not 24 / Re).
+  for (double eps : {0.4, 1.0}) {
+    const double want = 0.75 * 4.8 * 4.8 * air.mu / (eps * d * d) * std::pow(eps, -1.7);
+    const double got = di_felice_beta_over_solid(eps, 0.0, d, air);
+    std::printf("[ drag ] Di Felice at zero slip, eps %.1f: %.6e (limit %.6e) kg m^-3 s^-1\n", eps, got, want);
+    EXPECT_NEAR(got, want, 1e-12 * want);
+  }
+  // The exponent's minimum 3.05 at Re = 10^1.5 (where the exp term is 1).
+  const double slip15 = std::pow(10.0, 1.5) * air.mu / (air.rho * d);  // eps = 1
+  const double cd15 = std::pow(0.63 + 4.8 / std::pow(10.0, 0.75), 2);
+  EXPECT_NEAR(di_felice_beta_over_solid(1.0, slip15, d, air), 0.75 * cd15 * air.rho * slip15 / d,
+              1e-12 * 0.75 * cd15 * air.rho * slip15 / d);
+  EXPECT_NEAR(di_felice_beta_over_solid(0.5, slip15 / 0.5, d, air),
+              0.75 * cd15 * air.rho * (slip15 / 0.5) / d * std::pow(0.5, 2 - 3.05),
+              1e-9 * di_felice_beta_over_solid(0.5, slip15 / 0.5, d, air));
+}
