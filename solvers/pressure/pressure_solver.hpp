@@ -56,7 +56,17 @@ class PressureSolver {
   virtual void set_rel_tol(double rel_tol) = 0;
 };
 
-// Throws cgdem::Error for an unknown method or inconsistent grid.
+// The registered methods (SolverOptions::method), with one line of documentation each, in
+// the registry's order; their names alone.
+struct PressureMethodInfo {
+  const char* name;
+  const char* doc;
+};
+std::vector<PressureMethodInfo> pressure_methods();
+std::vector<std::string> pressure_method_names();
+
+// The solver of opt.method; throws cgdem::Error naming the allowed methods for any other
+// name, and for an inconsistent grid.
 std::unique_ptr<PressureSolver> make_pressure_solver(const GridSpec& grid, const SolverOptions& opt);
 
 }  // namespace cgdem::pressure

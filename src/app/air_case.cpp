@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "solvers/pressure/pressure_solver.hpp"
+
 namespace cgdem::app {
 
 namespace {
@@ -64,8 +66,7 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   a.coupled.feedback = s.boolean_or("feedback", true);
 
   Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
-  f.pressure.method = ps.string_or("method", "pcg-mg2",
-                                   {"pcg-fft", "pcg-mg", "pcg-mg2", "pcg-mg-f64", "pcg-mg2-f64", "cg", "cholmod"});
+  f.pressure.method = ps.string_or("method", "pcg-mg2", pressure::pressure_method_names());
   f.pressure.krylov = ps.string_or("krylov", "sundials", {"sundials", "fused"});
   f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range{0, 1, true, true});
   f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::closed(1, 1e6)));

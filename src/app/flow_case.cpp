@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/metrics.hpp"
 #include "solvers/fluid/fluid_solver.hpp"
+#include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::app {
 
@@ -56,7 +57,7 @@ FlowCase read_flow_case(Config& cfg) {
   f.advection = fluid::advection_from_string(s.string_or("advection", "van-leer", {"van-leer", "mc", "central", "upwind"}));
   f.bc = fluid::uniform_boundary(fluid::BcType::Periodic);
   Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
-  f.pressure.method = ps.string_or("method", "pcg-fft", {"pcg-fft", "pcg-mg", "pcg-mg2", "cg"});
+  f.pressure.method = ps.string_or("method", "pcg-fft", pressure::pressure_method_names());
   f.pressure.rel_tol = ps.number_or("tolerance", 1e-11, Range{0, 1, true, true});
   f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", 500, Range::closed(1, 1e6)));
   f.stage_rel_tol = f.pressure.rel_tol;  // the verification solves every stage to the same tolerance

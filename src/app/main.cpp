@@ -5,6 +5,7 @@
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
 //   cgdem spectrum | converge | scale | compare ...   (the analysis commands, scaling/*_command.hpp)
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,7 @@
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
 #include "scaling/spectrum_command.hpp"
+#include "solvers/pressure/pressure_solver.hpp"
 #ifdef CGDEM_WITH_MPI
 #include "app/mpi/run_distributed.hpp"
 #endif
@@ -101,7 +103,8 @@ int main(int argc, char** argv) {
   bfluid->add_option("--steps", f_args.steps, "timed steps")->check(CLI::PositiveNumber);
   bfluid->add_option("--warmup", f_args.warmup, "untimed steps first")->check(CLI::NonNegativeNumber);
   bfluid->add_option("--time-order", f_args.time_order, "1: Euler, 2: Heun")->check(CLI::Range(1, 2));
-  bfluid->add_option("--method", f_args.method, "pressure solver (pcg-mg2, pcg-mg, pcg-fft, cg, cholmod)");
+  bfluid->add_option("--method", f_args.method,
+                     fmt::format("pressure solver: {}", fmt::join(cgdem::pressure::pressure_method_names(), ", ")));
   bfluid->add_option("--tolerance", f_args.tolerance, "relative residual of the pressure solves")
       ->check(CLI::PositiveNumber);
   bfluid->add_option("--stage-tolerance", f_args.stage_tolerance, "relative residual of the Heun stage-1 solve");

@@ -7,12 +7,9 @@
 namespace cgdem::pressure {
 
 struct SolverOptions {
-  // The method, one of make_pressure_solver's (solvers/pressure/pressure_solver.cpp):
-  // "cg" (unpreconditioned SUNDIALS PCG, the reference), "pcg-fft" (PCG with the FFTW fast
-  // Poisson solve as preconditioner; this struct's default), "pcg-mg" / "pcg-mg2" (PCG with
-  // geometric multigrid, one or two smoothing sweeps, CHOLMOD on the coarsest level;
-  // "pcg-mg2" is what the case files use), their "-f64" variants (V-cycle in double),
-  // "pcg-fft-plain" (unscaled FFT, for the benchmark) and "cholmod" (direct reference).
+  // The method: a name of the registry behind make_pressure_solver (pressure_methods() in
+  // solvers/pressure/pressure_solver.hpp lists them with a line each). "pcg-fft" is this
+  // struct's default; the case files use "pcg-mg2".
   std::string method = "pcg-fft";
   // The Krylov engine of the preconditioned methods: "sundials" (SUNDIALS' PCG, the
   // default) or "fused" (the same recurrence in four memory passes per iteration,
