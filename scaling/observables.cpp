@@ -89,8 +89,13 @@ RunObservables read_observables(const std::string& dir, const ProfileSpec& s, do
         }
     }
   }
-  if (fs::exists(d / "metrics.csv"))  // the run's own figures take precedence
+  if (fs::exists(d / "metrics.csv")) {  // the run's own figures take precedence
+    // metrics.csv takes the pressure peaks over the filling window and leaves them out where
+    // they cannot be computed (no air; src/app/run_metrics.hpp): the whole-series peaks found
+    // above give way to its figures, or to nothing.
+    std::erase_if(o.scalars, [](const auto& kv) { return kv.first.rfind("p_", 0) == 0; });
     for (const auto& [n, v] : io::read_metrics((d / "metrics.csv").string())) o.scalars[n] = v;
+  }
   const auto frames = list_frames(dir, "particles");
   if (frames.empty()) throw Error(fmt::format("{}: no particle snapshots (particles_*.h5)", dir));
   const io::ParticleTable t = io::read_particles_h5(frames.back().file);

@@ -91,6 +91,11 @@ def series(d):
     return data
 
 
+def computed(series):
+    """False when a column holds no number (a pressure of a run without air)."""
+    return any(not math.isnan(v) for v in series)
+
+
 def main():
     ref, runs = sys.argv[1], sys.argv[2:]
     mr, sr = metrics(ref), series(ref)
@@ -99,11 +104,19 @@ def main():
         m, s = metrics(run), series(run)
         print(f"{run} vs {ref}")
         for k, tol in TOL.items():
-            a, b = mr.get(k, math.nan), m.get(k, math.nan)
+            a, b = mr.get(k), m.get(k)
+            a = None if a is not None and math.isnan(a) else a  # NaN: how older runs wrote it
+            b = None if b is not None and math.isnan(b) else b
+            if a is None or b is None:  # metrics.csv leaves out what it cannot compute (no air)
+                same = a is None and b is None
+                bad |= not same
+                where = "either run" if same else ("the reference" if a is None else "this run")
+                print(f"  {k:28s} not computed in {where}: {'ok' if same else 'MISMATCH'}")
+                continue
             if k == "front_time_s":
                 d = abs(b - a)
             elif k.endswith("_mean_Pa"):  # a mean near 0 (cell A): relative to the cell's peak
-                d = abs(b - a) / max(abs(mr[k.replace("_mean", "_peak")]), abs(a), 1e-300)
+                d = abs(b - a) / max(abs(mr.get(k.replace("_mean", "_peak"), a)), abs(a), 1e-300)
             else:
                 d = abs(b - a) / max(abs(a), 1e-300)
             ok = d <= tol
@@ -112,6 +125,12 @@ def main():
                   f"{'ok' if ok else 'EXCEEDS'}")
         t_ref, t_run = sr["t_s"], s["t_s"]
         for k, tol in SERIES_TOL.items():
+            if not (computed(sr[k]) and computed(s[k])):
+                same = computed(sr[k]) == computed(s[k])
+                bad |= not same
+                print(f"  series {k:21s} not computed in {'either run' if same else 'one run'}: "
+                      f"{'ok' if same else 'MISMATCH'}")
+                continue
             num, n, scale = 0.0, 0, max(abs(v) for v in sr[k])
             j = 0
             for i, t in enumerate(t_ref):
@@ -136,6 +155,8 @@ def main():
         # round-off does not decorrelate. Also the reference's own fluctuation (raw minus
         # smoothed, rms over t >= 0), the scale of what two decorrelated runs differ by.
         for k, tol in SMOOTH_TOL.items():
+            if not (computed(sr[k]) and computed(s[k])):
+                continue  # said above
             ra, rb = smooth(sr["t_s"], sr[k]), smooth(s["t_s"], s[k])
             fa, fb = max(abs(v) for v in ra.values()), max(abs(v) for v in rb.values())
             d_peak = abs(fb - fa) / fa
