@@ -8,7 +8,8 @@ pkgs=(build-essential cmake git pkg-config
       openmpi-bin libopenmpi-dev  # MPI (src/parallel/mpi, multi-rank tests); optional for the build
       libhypre-dev                # hypre PFMG, the "pfmg" preconditioner of solvers/pressure_mpi; optional
       python3-matplotlib python3-numpy python3-h5py  # plots of the analysis commands (optional at run time)
-      python3-pandas)  # tests/cli/csv_outputs: every run CSV must read with pandas.read_csv as is
+      python3-pandas   # tests/cli/csv_outputs: every run CSV must read with pandas.read_csv as is
+      python3-meshio)  # tests/cli/h5_outputs: particles.xdmf must read with meshio
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
