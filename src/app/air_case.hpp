@@ -39,7 +39,7 @@ struct AirCase {
   fluid::FluidParams fluid;
   CoupledParams coupled;
   coupling::ExchangeParams exchange;
-  // Preconditioner of the distributed pressure solve under mpirun (air_mpi/dist_pressure.hpp):
+  // Preconditioner of the distributed pressure solve under mpirun (solvers/pressure_mpi/dist_pressure.hpp):
   // "auto" = "as-mg2" on up to 4 ranks, "pfmg" (hypre) beyond when the build has it.
   std::string mpi_preconditioner = "auto";
 };
