@@ -15,17 +15,10 @@ import sys
 import numpy as np
 
 
-# The unit of each column name cgdem wrote before the names carried their unit (the files
-# then began with '#' lines and a column line of bare names): such files are read with the
-# names of today (t -> t_s, mass_in_die -> mass_in_die_kg, p_A -> p_A_Pa).
-OLD_UNITS = {"t": "s", "mass_in_die": "kg", "transfer_rate": "kg/s", "mass_in_shoe": "kg", "Q_cavity": "m^3/s",
-             "Q_shoe_walls": "m^3/s", "Q_open_mouth": "m^3/s", "V_bubbles": "m^3", "V_bubble_max": "m^3",
-             "z_bubble": "m", "z_bubble_top": "m", "V_bubbles_shoe": "m^3", "V_sealed": "m^3"}
-
-
-def new_name(old):
-    unit = OLD_UNITS.get(old, "Pa" if old.startswith("p_") and len(old) > 2 else None)
-    return old if unit is None else old + "_" + unit.replace("^", "").replace("/", "_")
+# Files written before the column names carried their unit are read under today's names
+# (t -> t_s, mass_in_die -> mass_in_die_kg, p_A -> p_A_Pa): the mapping of
+# compare_observables.py beside this script.
+from compare_observables import new_name  # noqa: E402
 
 
 def read_csv(path):
