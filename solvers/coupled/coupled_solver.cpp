@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace cgdem {
 
 CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::FluidState& air,
@@ -23,6 +25,87 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
     void_stats_ = ex_.void_fraction(dem_.particles(), w, air_.eps);
   }
   air_.eps_old = air_.eps;
+  if (params_.coupling == DragCoupling::Implicit) {
+    const auto& g = air_.grid;
+    long n = 0;
+    for (int d = 0; d < 3; ++d) {
+      const auto e = g.face_extent(d);
+      n += static_cast<long>(e[0]) * e[1] * e[2];
+    }
+    implicit_ = std::make_unique<ImplicitDragSolver>(n, params_.implicit);
+    u_vec_.assign(n, 0.0);
+  }
+}
+
+namespace {
+
+// The interior face values of u, v, w one after the other (boundary faces included).
+void pack_faces(const fluid::FluidState& s, double* out) {
+  long q = 0;
+  for (int d = 0; d < 3; ++d) {
+    const fluid::Field& f = s.vel(d);
+    for (int k = 0; k < f.nk(); ++k)
+      for (int j = 0; j < f.nj(); ++j) {
+        const double* r = f.data() + f.index(0, j, k);
+        std::copy(r, r + f.ni(), out + q);
+        q += f.ni();
+      }
+  }
+}
+
+void unpack_faces(const double* in, fluid::FluidState& s) {
+  long q = 0;
+  for (int d = 0; d < 3; ++d) {
+    fluid::Field& f = s.vel(d);
+    for (int k = 0; k < f.nk(); ++k)
+      for (int j = 0; j < f.nj(); ++j) {
+        std::copy(in + q, in + q + f.ni(), f.data() + f.index(0, j, k));
+        q += f.ni();
+      }
+  }
+}
+
+}  // namespace
+
+void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
+  for (int side = 0; side < 6; ++side)
+    if (fluid_.sync().is_cut(side))
+      throw Error("coupled step: the implicit drag coupling runs on one process only (air.coupling = \"implicit\" "
+                  "with several MPI ranks is not implemented)");
+  Particles& p = dem_.particles();
+  const double dt = st.dt_fluid;
+  const auto frame = dem_.scene().at(t_end);
+  ex_.mean_parcel_velocities(p, w_.size(), dt, vbar_);
+  air_n_ = air_;            // u^n, p^n (the guess of the first solve), eps^n, eps^{n+1}
+  fluid::FluidState trial = air_;  // holds the iterate u^{n+1,k} and eps^{n+1} for the coefficient
+  std::vector<double> c_in;
+  int pressure_iterations = 0;
+  // G(u): the air step from t^n with the drag coefficient at u. Its pressure starts from
+  // the previous evaluation's (a warm start: the result does not depend on it beyond the
+  // pressure tolerance).
+  auto G = [&](const double* in, double* out) {
+    unpack_faces(in, trial);
+    { auto t = timers_.scope(t_deposit_);
+      ex_.drag_at(trial, w_, p, vbar_, c_);
+      ex_.deposit_drag(w_, c_, vbar_, src_); }
+    const fluid::Field p_guess = air_.p;
+    air_ = air_n_;
+    air_.p = p_guess;
+    st.fluid = fluid_.advance(air_, frame, src_, dt);
+    pressure_iterations += st.fluid.pressure_iterations;
+    pack_faces(air_, out);
+  };
+  pack_faces(air_n_, u_vec_.data());
+  st.drag = implicit_->solve(G, u_vec_);
+  st.fluid.pressure_iterations = pressure_iterations;
+  if (!st.drag.converged)
+    throw Error(fmt::format("coupled step t = {:.6g} -> {:.6g} s: the implicit drag coupling ({}) did not converge: "
+                            "max |G(u) - u| = {:.3e} m/s > tolerance {:.3e} m/s after {} iterations ({} air steps, "
+                            "KINSOL flag {}); raise air.implicit.max_iterations, loosen air.implicit.tolerance or "
+                            "shorten air.dt_max",
+                            air_n_.t, t_end, implicit_->options().method, st.drag.residual, implicit_->options().tol,
+                            st.drag.iterations, st.drag.evaluations, st.drag.kinsol_flag));
+  // air_ holds the evaluation at u_vec_ (the accepted iterate) and c_ its coefficients.
 }
 
 void CoupledSolver::walls_at(double t) {
@@ -78,13 +161,20 @@ CoupledStepStats CoupledSolver::step() {
   weights_at(t_end);                                                  //    x^{n+1}, alpha at t^{n+1}
   { auto t = timers_.scope(t_map_);
     void_stats_ = ex_.void_fraction(p, w_, air_.eps); }               // 3. eps^{n+1}
-  { auto t = timers_.scope(t_deposit_);
-    if (params_.feedback) ex_.parcels_to_air(p, w_, st.dt_fluid, src_);  // 4. K, Kv (eq. 14)
-    else src_ = {}; }
-  st.fluid = fluid_.advance(air_, dem_.scene().at(t_end), src_, st.dt_fluid);  // 5. air
-  if (params_.move_particles) {
-    auto t = timers_.scope(t_gather_);
-    ex_.correct_parcels(air_, w_, st.dt_fluid, p); }                   // 6. end-of-step forces
+  if (implicit_ && params_.feedback) {
+    implicit_air_step(t_end, st);                                     // 4'-5'. air, drag at u^{n+1}
+    if (params_.move_particles) {
+      auto t = timers_.scope(t_gather_);
+      ex_.correct_parcels_implicit(air_, w_, st.dt_fluid, c_, vbar_, p); }  // 6'.
+  } else {
+    { auto t = timers_.scope(t_deposit_);
+      if (params_.feedback) ex_.parcels_to_air(p, w_, st.dt_fluid, src_);  // 4. K, Kv (eq. 14)
+      else src_ = {}; }
+    st.fluid = fluid_.advance(air_, dem_.scene().at(t_end), src_, st.dt_fluid);  // 5. air
+    if (params_.move_particles) {
+      auto t = timers_.scope(t_gather_);
+      ex_.correct_parcels(air_, w_, st.dt_fluid, p); }                 // 6. end-of-step forces
+  }
   air_.t = t_end;
   dem_.set_time(t_end);  // removes the round-off of N additions of dt_DEM
   st.void_fraction = void_stats_;

@@ -22,24 +22,44 @@
 // Variants (for verification and to isolate effects): feedback = false drops step 4 (the
 // air does not feel the parcels: one-way); move_particles = false skips step 2 (a fixed
 // bed: parcels keep their place and velocity, and still drag the air).
+//
+// Implicit drag coupling (coupling = Implicit, implicit_drag.hpp): steps 4-6 become
+//   4'. vbar_p = u_f - J_p/(dt_f c_p), the parcels' drag-weighted mean velocity of the step
+//   5'. u^{n+1} = G(u^{n+1}): the air step of 5 with K, Kv deposited from the coefficient at
+//       the end of the step, c_p(eps^{n+1}, |u^{n+1}(x_p) - vbar_p|), solved by KINSOL
+//   6'. each parcel receives dt_f c_p (u^{n+1}(x_p) - vbar_p) - J_p, what the air lost less
+//       what it was given, with the bounding factor 1/(1 + a/m_p) of step 6
+// (the DEM substeps keep the coefficient of t^n: the parcels' side is explicit in u, and the
+// correction hands them the implicit drag). One process only for now.
 #pragma once
 #include "coupling/exchange.hpp"
+#include "solvers/coupled/implicit_drag.hpp"
 #include "solvers/dem/dem_solver.hpp"
 #include "solvers/fluid/fluid_solver.hpp"
 
 namespace cgdem {
 
+// How the drag coefficient of the air step is taken (implicit_drag.hpp).
+enum class DragCoupling {
+  SemiImplicit,  // c_p frozen at t^n (slip and eps of the start of the step), linear air step
+  Implicit,      // c_p at the new slip |u^{n+1} - vbar_p| and eps^{n+1}: u = G(u) by KINSOL
+};
+
 struct CoupledParams {
   double dt_fluid_max = 1e-4;  // [s] upper bound of the fluid step (also the CFL limit applies)
   bool feedback = true;        // two-way coupling (the parcels' drag acts on the air)
   bool move_particles = true;  // false: parcels held in place
+  DragCoupling coupling = DragCoupling::SemiImplicit;
+  ImplicitDragOptions implicit;  // coupling = Implicit
 };
 
 struct CoupledStepStats {
   int substeps = 0;
   double dt_fluid = 0;
   coupling::VoidStats void_fraction;
-  fluid::StepStats fluid;
+  fluid::StepStats fluid;  // implicit coupling: of the accepted air step, pressure
+                           // iterations summed over every air step of the nonlinear solve
+  ImplicitDragStats drag;  // implicit coupling only (evaluations = 0 otherwise)
 };
 
 class CoupledSolver {
@@ -59,6 +79,8 @@ class CoupledSolver {
 
  private:
   void advance_particles(int n_sub);
+  // Steps 4-5 of the implicit coupling: the air step at the drag of its own end velocity.
+  void implicit_air_step(double t_end, CoupledStepStats& st);
 
   DemSolver& dem_;
   fluid::FluidSolver& fluid_;
@@ -75,6 +97,13 @@ class CoupledSolver {
   fluid::IbmFractions walls_;
   PhaseTimers timers_;
   int t_weights_, t_gather_, t_map_, t_deposit_;
+  // Implicit coupling: the solver, the parcels' mean velocities and coefficients, the air
+  // at t^n, the unknown vector (all face velocities).
+  std::unique_ptr<ImplicitDragSolver> implicit_;
+  std::vector<Vec3> vbar_;
+  std::vector<double> c_;
+  fluid::FluidState air_n_;
+  std::vector<double> u_vec_;
 };
 
 }  // namespace cgdem

@@ -64,6 +64,17 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
     s.fail("dt_max", fmt::format("{:g} s is shorter than the DEM step time.dt = {:g} s", a.coupled.dt_fluid_max, dem.dt));
   f.dt_max = a.coupled.dt_fluid_max;
   a.coupled.feedback = s.boolean_or("feedback", true);
+  const std::string coupling = s.string_or("coupling", "semi-implicit", {"semi-implicit", "implicit"});
+  a.coupled.coupling = coupling == "implicit" ? DragCoupling::Implicit : DragCoupling::SemiImplicit;
+  if (auto is = s.optional_section("implicit")) {
+    if (a.coupled.coupling != DragCoupling::Implicit)
+      is->fail("method", "[air.implicit] is read only with air.coupling = \"implicit\"");
+    ImplicitDragOptions& o = a.coupled.implicit;
+    o.method = is->string_or("method", o.method, ImplicitDragOptions::methods());
+    o.tol = is->number_or("tolerance", o.tol, Range::open_closed(0, 1));
+    o.max_iterations = static_cast<int>(is->integer_or("max_iterations", o.max_iterations, Range::closed(1, 1000)));
+    o.depth = static_cast<int>(is->integer_or("depth", o.depth, Range::closed(0, 20)));
+  }
 
   Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
   f.pressure.method = ps.string_or("method", "pcg-mg2", pressure::pressure_method_names());

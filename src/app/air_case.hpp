@@ -15,6 +15,9 @@
 //   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter; the others: coupling/drag.hpp (kDragLaws)
 //   eps_min = 0.2             # lower bound of the mapped void fraction
 //   feedback = true           # false: one-way coupling (the air ignores the parcels)
+//   coupling = "semi-implicit" # drag coefficient frozen at the start of the step; "implicit":
+//                             # at the step's end velocity, solved with the air by KINSOL
+//                             # (solvers/coupled/implicit_drag.hpp; one process only)
 //   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha
 //   [air.pressure]  method = "pcg-mg2" (fastest on the die-filling grid: docs/pressure.md),
 //                   krylov = "sundials" (SUNDIALS PCG; "fused": the same recurrence, fewer passes),
@@ -23,6 +26,10 @@
 //                   mpi_preconditioner = "auto" | "as-mg2" | "as-mg" | "bj-mg" | "bj-mg2" |
 //                   "bj-fft" | "pfmg" | "none" (under mpirun only; "auto": as-mg2 on up to
 //                   4 ranks, pfmg beyond when built with hypre; docs/scale_out.md)
+//   [air.implicit]  (coupling = "implicit") method = "anderson" (KINSOL fixed point with
+//                   Anderson acceleration) | "newton" (KINSOL Newton-SPGMR), tolerance = 1e-6
+//                   (m/s, in (0, 1]: max |G(u) - u| over the faces), max_iterations = 30
+//                   (1 .. 1000), depth = 4 (Anderson depth, 0 .. 20)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
 //                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa, |p| <= 1e7)
 #pragma once

@@ -68,6 +68,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
   for (const auto& s : c.species) sp_mass.push_back(s.mass()), sp_d.push_back(s.diameter());
   DieDiagnostics diag(diag_spec, sp_mass, sp_d);
   RunCounters counters;
+  DragCounters drag_counters;  // implicit drag coupling, since this process started (not checkpointed)
   const bool restart = !info.restart.empty();
   if (restart) {
     const std::string stored = read_checkpoint(info.restart, *dem, with_air ? &air : nullptr, diag, counters);
@@ -95,7 +96,14 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     fmt::print("air: {} x {} x {} cells of {:g} m, fluid step <= {:g} s, pressure {} (tol {:g}), {}-way coupling\n",
                air_case.grid.nx, air_case.grid.ny, air_case.grid.nz, air_case.grid.dx, air_case.coupled.dt_fluid_max,
                air_case.fluid.pressure.method, air_case.fluid.pressure.rel_tol, air_case.coupled.feedback ? "two" : "one");
-  else
+  if (with_air && air_case.coupled.coupling == DragCoupling::Implicit)
+    fmt::print("drag: implicit (the coefficient at the step's end velocity), KINSOL {} (tol {:g} m/s, at most {} "
+               "iterations{})\n",
+               air_case.coupled.implicit.method, air_case.coupled.implicit.tol, air_case.coupled.implicit.max_iterations,
+               air_case.coupled.implicit.method == "anderson"
+                   ? fmt::format(", depth {}", air_case.coupled.implicit.depth)
+                   : std::string());
+  if (!with_air)
     fmt::print("air: none (vacuum)\n");
   fmt::print("shortest collision time {:.4g} s ({:.1f} steps); set-up {:.2f} s\n", dem->min_collision_time(),
              dem->min_collision_time() / c.dem.dt, setup_clock.seconds());
@@ -214,6 +222,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
       CoupledStepStats st = coupled->step();
       particle_steps += (dem->steps() - before) * static_cast<long>(dem->particles().size());
       count_fluid_step(counters, st, dem->time());
+      count_drag_step(drag_counters, st);
       auto ts = out_timers.scope(t_observe);
       diag.observe(dem->time(), dem->particles(), st.dt_fluid);  // the next step: as long as this one
     } else {
@@ -272,6 +281,7 @@ int run_case(const DemCase& c, const AirCase& air_case, const DiagnosticsSpec& d
     fmt::print("{}", coupled->timers().table("per-phase time (coupling)"));
     fmt::print("{}", fluid->timers().table("per-phase time (air)"));
     print_fluid_counters(counters);
+    if (drag_counters.steps > 0) print_drag_counters(drag_counters);
   }
   fmt::print("{}", out_timers.table("per-phase time (output)"));
   {

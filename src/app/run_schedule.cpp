@@ -175,6 +175,21 @@ void count_fluid_step(RunCounters& c, const CoupledStepStats& st, double t, bool
                "counted in the final report\n", t, st.fluid.pressure_residual);
 }
 
+void count_drag_step(DragCounters& c, const CoupledStepStats& st) {
+  if (st.drag.evaluations == 0) return;
+  ++c.steps;
+  c.iterations += st.drag.iterations;
+  c.evaluations += st.drag.evaluations;
+  c.max_iterations = std::max(c.max_iterations, st.drag.iterations);
+  c.max_residual = std::max(c.max_residual, st.drag.residual);
+}
+
+void print_drag_counters(const DragCounters& c) {
+  fmt::print("implicit drag: {} nonlinear solves, {:.2f} iterations and {:.2f} air steps per fluid step (at most {}), "
+             "largest accepted residual {:.2e} m/s\n",
+             c.steps, double(c.iterations) / c.steps, double(c.evaluations) / c.steps, c.max_iterations, c.max_residual);
+}
+
 void print_fluid_counters(const RunCounters& c) {
   fmt::print("fluid steps {}, mean pressure iterations per step {:.1f}, unconverged solves {}, max divergence "
              "{:.2e} 1/s in cells with air ({:.2e} 1/s inside walls, not imposed)\n",

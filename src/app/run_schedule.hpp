@@ -119,4 +119,13 @@ void count_fluid_step(RunCounters& c, const CoupledStepStats& st, double t, bool
 // The counters' line of the final report.
 void print_fluid_counters(const RunCounters& c);
 
+// The implicit drag coupling's nonlinear solves (CoupledStepStats::drag).
+struct DragCounters {
+  long steps = 0, iterations = 0, evaluations = 0;
+  int max_iterations = 0;
+  double max_residual = 0;  // [m/s] at acceptance
+};
+void count_drag_step(DragCounters& c, const CoupledStepStats& st);
+void print_drag_counters(const DragCounters& c);
+
 }  // namespace cgdem::app

@@ -160,6 +160,73 @@ void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights
   }
 }
 
+void Exchange::mean_parcel_velocities(const Particles& p, size_t n, double dt_f, std::vector<Vec3>& vbar) const {
+  if (n > p.size()) throw Error("exchange: mean velocities of more parcels than there are");
+  vbar.resize(n);
+  const long m = static_cast<long>(n);
+#pragma omp parallel for schedule(static) if (m >= 2048)
+  for (long i = 0; i < m; ++i)
+    vbar[i] = p.drag[i] > 0 ? p.u_fluid[i] - (1.0 / (dt_f * p.drag[i])) * p.j_drag[i] : p.v[i];
+}
+
+void Exchange::drag_at(const fluid::FluidState& air, const ParcelWeights& w, const Particles& p,
+                       const std::vector<Vec3>& vbar, std::vector<double>& c) const {
+  const long n = static_cast<long>(w.size());
+  if (vbar.size() != w.size()) throw Error("exchange: drag_at needs one mean velocity per parcel");
+  c.resize(n);
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long i = 0; i < n; ++i) {
+    const int s = p.species[i];
+    Vec3 u;
+    for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
+    const double eps = interpolate(w.cell[i], air.eps);
+    c[i] = volume_[s] * beta_over_solid(params_.law, eps, norm(u - vbar[i]), d_original_[s], params_.air);
+  }
+}
+
+void Exchange::deposit_drag(const ParcelWeights& w, const std::vector<double>& c, const std::vector<Vec3>& vbar,
+                            fluid::Sources& src) const {
+  if (c.size() != w.size() || vbar.size() != w.size())
+    throw Error("exchange: deposit_drag needs one coefficient and one mean velocity per parcel");
+  const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
+  for (int d = 0; d < 3; ++d) {
+    src.K[d] = fluid::make_face_field(g_, d);
+    src.Kv[d] = fluid::make_face_field(g_, d);
+  }
+  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
+    const double k = c[i] * inv_vc;
+    if (k == 0) continue;
+    for (int d = 0; d < 3; ++d) {
+      deposit(w.face[d][i], k, src.K[d]);
+      deposit(w.face[d][i], k * vbar[i][d], src.Kv[d]);
+    }
+  }
+  for (int d = 0; d < 3; ++d) {
+    sync_periodic_face(d, periodic_, src.K[d]);
+    sync_periodic_face(d, periodic_, src.Kv[d]);
+    if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
+  }
+}
+
+void Exchange::correct_parcels_implicit(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
+                                        const std::vector<double>& c, const std::vector<Vec3>& vbar,
+                                        Particles& p) const {
+  const long n = static_cast<long>(w.size());
+  if (c.size() != w.size() || vbar.size() != w.size())
+    throw Error("exchange: correct_parcels_implicit needs one coefficient and one mean velocity per parcel");
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long i = 0; i < n; ++i) {
+    Vec3 u;
+    for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
+    const double a = dt_f * c[i];
+    const Vec3 dj = (1.0 / (1 + a * p.inv_mass[i])) * (a * (u - vbar[i]) - p.j_drag[i]);
+    const Vec3 v0 = p.v[i];
+    p.v[i] += p.inv_mass[i] * dj;
+    p.j_drag[i] += dj;
+    p.w_fluid[i] += dot(dj, 0.5 * (v0 + p.v[i]));
+  }
+}
+
 void Exchange::parcels_to_air(const Particles& p, const ParcelWeights& w, double dt_f, fluid::Sources& src) const {
   const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
   for (int d = 0; d < 3; ++d) {

@@ -104,6 +104,25 @@ class Exchange {
   // air_to_parcels at t^n.
   void correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f, Particles& p) const;
 
+  // The implicit coupling (solvers/coupled/implicit_drag.hpp), after the DEM substeps of a step:
+  // the drag-weighted mean velocity of every parcel over the step, vbar_p = u_f - J_p/(dt_f c_p)
+  // (the velocity the semi-implicit deposit uses implicitly; v_p itself for a parcel held in place).
+  void mean_parcel_velocities(const Particles& p, size_t n, double dt_f, std::vector<Vec3>& vbar) const;
+  // c_p = V_p beta/(1-eps) at the parcel from the air velocity and eps of `air` (u^{n+1} and
+  // eps^{n+1} in the implicit step), with the slip |u(x_p) - vbar_p| (eqs. 8-11).
+  void drag_at(const fluid::FluidState& air, const ParcelWeights& w, const Particles& p,
+               const std::vector<Vec3>& vbar, std::vector<double>& c) const;
+  // K = sum_p w_f c_p / dx^3 and Kv = sum_p w_f c_p vbar_p / dx^3 (the air then feels
+  // c_p (vbar_p - u) per parcel, implicit in u).
+  void deposit_drag(const ParcelWeights& w, const std::vector<double>& c, const std::vector<Vec3>& vbar,
+                    fluid::Sources& src) const;
+  // End-of-step correction of the implicit step: the parcel receives what the air lost,
+  // dt_f c_p (u^{n+1}(x_p) - vbar_p), less the impulse J_p it was given over the substeps,
+  // bounded by the same backward-Euler factor 1/(1 + a/m_p), a = dt_f c_p. With c_p equal to
+  // the coefficient of the substeps this is correct_parcels' kick.
+  void correct_parcels_implicit(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
+                                const std::vector<double>& c, const std::vector<Vec3>& vbar, Particles& p) const;
+
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
   // Over MPI ranks their ghost layers on the cut sides must hold the neighbours' values.
   void set_walls(const fluid::IbmFractions* walls) { walls_ = walls; }

@@ -41,6 +41,7 @@ struct BedSpec {
   double inflow = 0;          // U_w of the bottom Wall side [m/s]
   unsigned seed = 7;
   MaterialParams material{};  // k 50 N/m, e 0.9, mu 0.3 (paper, Table 1)
+  DragCoupling coupling = DragCoupling::SemiImplicit;
 };
 
 struct Bed {
@@ -112,6 +113,7 @@ inline Bed make_bed(const BedSpec& b, const Particles* start = nullptr) {
   ep.bc = bed.air_params.bc;
   CoupledParams cp;
   cp.dt_fluid_max = b.dt_fluid_max;
+  cp.coupling = b.coupling;
   sys->cs = std::make_unique<CoupledSolver>(*sys->dem, *sys->fluid, sys->air,
                                             coupling::Exchange(g, {sp}, ep), cp);
   return bed;

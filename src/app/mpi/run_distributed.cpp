@@ -178,6 +178,9 @@ int run_case_distributed(MPI_Comm comm, const DemCase& c, const AirCase& air_cas
   MPI_Comm_size(comm, &R.size);
   const bool root = R.rank == 0;
   const bool with_air = air_case.enabled;
+  if (with_air && air_case.coupled.coupling == DragCoupling::Implicit)
+    throw Error("air.coupling = \"implicit\" runs on one process only: the implicit drag coupling over MPI ranks "
+                "is not implemented (run without mpirun, or with air.coupling = \"semi-implicit\")");
   const fluid::MacGrid& grid = air_case.grid;
   if (with_air) {
     for (int a = 0; a < 3; ++a)
