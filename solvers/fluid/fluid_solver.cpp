@@ -141,7 +141,9 @@ void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1,
   }
 }
 
-StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt) {
+// Refuses a state of another grid, sources of another layout and eps outside (0, 1] (the
+// first bad cell is named).
+void FluidSolver::check_inputs(const FluidState& s, const Sources& src, double dt) {
   if (!(dt > 0)) throw Error(fmt::format("fluid: time step must be > 0 (got {})", dt));
   if (s.u.extent() != g_.face_extent(0) || s.p.extent() != g_.n() || s.eps_old.extent() != g_.n())
     throw Error("fluid: state does not match the solver's grid");
@@ -150,29 +152,53 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
     check_source(src.Kv[d], g_, d, "Kv");
     check_source(src.f_explicit[d], g_, d, "f_explicit");
   }
-  {
-    auto t = timers_.scope("checks");
-    auto ok = [&](int i, int j, int k) {
-      return s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1;
-    };
-    bool all_ok = true;
+  auto t = timers_.scope("checks");
+  auto ok = [&](int i, int j, int k) {
+    return s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1;
+  };
+  bool all_ok = true;
 #pragma omp parallel for schedule(static) reduction(&& : all_ok) if (g_.cells() > kOmpMinWork)
-    for (int k = 0; k < g_.nz; ++k)
-      for (int j = 0; j < g_.ny; ++j)
-        for (int i = 0; i < g_.nx; ++i) all_ok = all_ok && ok(i, j, k);
-    if (sync_->any(!all_ok)) {  // name the first bad cell
-      std::string bad;
-      for (int k = 0; k < g_.nz && bad.empty(); ++k)
-        for (int j = 0; j < g_.ny && bad.empty(); ++j)
-          for (int i = 0; i < g_.nx && bad.empty(); ++i)
-            if (!ok(i, j, k)) {
-              const Vec3 x = g_.cell_centre(i, j, k);
-              bad = fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m", i, j,
-                                k, x.x, x.y, x.z);
-            }
-      sync_->raise_if(!bad.empty(), bad);
-    }
+  for (int k = 0; k < g_.nz; ++k)
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i) all_ok = all_ok && ok(i, j, k);
+  if (!sync_->any(!all_ok)) return;
+  std::string bad;  // name the first bad cell
+  for (int k = 0; k < g_.nz && bad.empty(); ++k)
+    for (int j = 0; j < g_.ny && bad.empty(); ++j)
+      for (int i = 0; i < g_.nx && bad.empty(); ++i)
+        if (!ok(i, j, k)) {
+          const Vec3 x = g_.cell_centre(i, j, k);
+          bad = fmt::format("fluid: eps outside (0, 1] in cell ({}, {}, {}) at [{:.4g}, {:.4g}, {:.4g}] m", i, j, k,
+                            x.x, x.y, x.z);
+        }
+  sync_->raise_if(!bad.empty(), bad);
+}
+
+// The divergence residuals and the Courant number of the state after a step.
+void FluidSolver::step_statistics(const FluidState& s, double dt, StepStats& st) const {
+  const Divergence dv = divergence(s, dt);
+  st.max_divergence = dv.fluid;
+  st.max_divergence_walls = dv.walls;
+  double umax_d[3];
+  for (int d = 0; d < 3; ++d) {
+    double m = 0;
+    const Field& f = s.vel(d);
+#pragma omp parallel for schedule(static) reduction(max : m) if (g_.cells() > kOmpMinWork)
+    for (int k = 0; k < f.nk(); ++k)
+      for (int j = 0; j < f.nj(); ++j)
+        for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
+    umax_d[d] = m;
   }
+  sync_->max(umax_d, 3);
+  double umax = 0;
+  for (int d = 0; d < 3; ++d) umax += umax_d[d];
+  st.cfl = umax * dt / g_.dx;
+}
+
+// The step of fluid_solver.hpp: IBM fractions at t^{n+1}, explicit terms, predictor,
+// projection; for time_order 2 a projected stage 1 and the Heun average first.
+StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt) {
+  check_inputs(s, src, dt);
   StepStats st;
   {
     auto t = timers_.scope("ibm");
@@ -214,24 +240,10 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
     predict(s, R0_, &R1_, src, dt, ustar_);  // Heun: R = (R0 + R1)/2
   }
   project(s, src, dt, ustar_, vel, s.p, st);
-  auto t = timers_.scope("diagnostics");
-  const Divergence dv = divergence(s, dt);
-  st.max_divergence = dv.fluid;
-  st.max_divergence_walls = dv.walls;
-  double umax_d[3];
-  for (int d = 0; d < 3; ++d) {
-    double m = 0;
-    const Field& f = s.vel(d);
-#pragma omp parallel for schedule(static) reduction(max : m) if (g_.cells() > kOmpMinWork)
-    for (int k = 0; k < f.nk(); ++k)
-      for (int j = 0; j < f.nj(); ++j)
-        for (int i = 0; i < f.ni(); ++i) m = std::max(m, std::fabs(f(i, j, k)));
-    umax_d[d] = m;
+  {
+    auto t = timers_.scope("diagnostics");
+    step_statistics(s, dt, st);
   }
-  sync_->max(umax_d, 3);
-  double umax = 0;
-  for (int d = 0; d < 3; ++d) umax += umax_d[d];
-  st.cfl = umax * dt / g_.dx;
   s.eps_old = s.eps;
   s.t += dt;
   return st;

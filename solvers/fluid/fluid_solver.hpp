@@ -79,6 +79,8 @@ class FluidSolver {
   void project(const FluidState& s, const Sources& src, double dt, Faces& ustar, const Vel& vel, Field& p,
                StepStats& st);
   void set_pressure_coefficients(const Sources& src, double dt);
+  void check_inputs(const FluidState& s, const Sources& src, double dt);
+  void step_statistics(const FluidState& s, double dt, StepStats& st) const;
 
   MacGrid g_;
   FluidParams params_;
