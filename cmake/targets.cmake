@@ -30,7 +30,7 @@ cgdem_module(cgdem_geometry DIRS src/geometry DEPS cgdem_core)
 cgdem_module(cgdem_io DIRS src/io DEPS cgdem_core PkgConfig::HDF5)
 cgdem_module(cgdem_dem DIRS src/particles src/contact solvers/dem DEPS cgdem_geometry cgdem_io)
 cgdem_module(cgdem_pressure DIRS solvers/pressure
-  DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial SUNDIALS::nvecopenmp PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse Eigen3::Eigen)
+  DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse)
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
 cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
 # The building blocks of the decomposition: blocks of parcels and of air cells, parcel

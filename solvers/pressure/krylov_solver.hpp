@@ -1,8 +1,9 @@
 // PressureSolver for the Krylov methods ("cg", "pcg-fft", "pcg-mg"): PCG on the SPD system
 // A phi = -rhs  (A = -div(a grad .), poisson7.hpp) with an optional preconditioner. Engine:
-// the fused PCG of fused_pcg.hpp (default for the preconditioned methods) or SUNDIALS'
-// SUNLinSol_PCG (the unpreconditioned "cg" reference; selectable for comparison) - the same
-// recurrence, so the same iterates up to rounding.
+// SUNDIALS' SUNLinSol_PCG on serial N_Vectors (SolverOptions::krylov = "sundials", the
+// default, and always for the unpreconditioned "cg" reference) or the fused PCG of
+// fused_pcg.hpp ("fused", for comparison) - the same recurrence, so the same iterates up to
+// rounding.
 // Singular parts (floating components) are handled by projecting rhs, the preconditioned
 // residual and phi onto the mean-free subspace of every floating component.
 #pragma once
