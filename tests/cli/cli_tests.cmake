@@ -25,6 +25,12 @@ add_test(NAME cli.tiny_air_case_runs
                  --output ${PROJECT_BINARY_DIR}/cli_out/tiny_air)
 set_tests_properties(cli.tiny_air_case_runs PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "air: 6 x 6 x 11 cells.*particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
+# The same with the implicit drag coupling (KINSOL): it runs and reports its solves.
+add_test(NAME cli.tiny_air_case_runs_implicit_drag
+         COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/base.toml --set air.dx=1e-3
+                 --set air.coupling=implicit --output ${PROJECT_BINARY_DIR}/cli_out/tiny_air_implicit)
+set_tests_properties(cli.tiny_air_case_runs_implicit_drag PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "drag: implicit.*KINSOL anderson.*implicit drag: [0-9]+ nonlinear solves.*particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
 # Checkpoint and restart: bit-identical continuation, in vacuum, with air, and with air
 # and a moving wall (the restart lands while the paddle accelerates through the parcels).
 foreach(variant vacuum air moving_wall)
