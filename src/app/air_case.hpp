@@ -27,7 +27,7 @@
 //                   "bj-fft" | "pfmg" | "none" (under mpirun only; "auto": as-mg2 on up to
 //                   4 ranks, pfmg beyond when built with hypre; docs/scale_out.md)
 //   [air.implicit]  (coupling = "implicit") method = "anderson" (KINSOL fixed point with
-//                   Anderson acceleration) | "newton" (KINSOL Newton-SPGMR), tolerance = 1e-6
+//                   Anderson acceleration) | "newton" (KINSOL Newton-SPGMR), tolerance = 1e-5
 //                   (m/s, in (0, 1]: max |G(u) - u| over the faces), max_iterations = 30
 //                   (1 .. 1000), depth = 4 (Anderson depth, 0 .. 20)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
