@@ -51,6 +51,15 @@ std::unique_ptr<CoupledSystem> make_system(SystemSpec s, AddParticles add) {
   return sys;
 }
 
+// A simple cubic lattice of parcels of species 0: n_xy x n_xy x n_z sites of spacing a,
+// the first layer's centres at z0 + a/2 (a fixed bed when the coupling holds them in place).
+inline void add_cubic_lattice(Particles& p, const Species& sp, int n_xy, int n_z, double a, double z0) {
+  int64_t id = static_cast<int64_t>(p.size());
+  for (int k = 0; k < n_z; ++k)
+    for (int j = 0; j < n_xy; ++j)
+      for (int i = 0; i < n_xy; ++i) p.add(id++, 0, sp, {(i + 0.5) * a, (j + 0.5) * a, z0 + (k + 0.5) * a});
+}
+
 inline double rel_err(double got, double want) { return std::fabs(got - want) / std::fabs(want); }
 
 }  // namespace cgdem::test

@@ -47,12 +47,7 @@ BedResult fixed_bed(double ratio, int per_cell, double dt_fluid_max, int steps) 
   s.coupled.dt_fluid_max = dt_fluid_max;
   s.coupled.move_particles = false;
   auto sys = test::make_system(s, [&](Particles& p) {
-    const int n_xy = nxy * per_cell, n_z = (bed1 - bed0) * per_cell;
-    int64_t id = 0;
-    for (int k = 0; k < n_z; ++k)
-      for (int j = 0; j < n_xy; ++j)
-        for (int i = 0; i < n_xy; ++i)
-          p.add(id++, 0, s.species[0], {(i + 0.5) * a, (j + 0.5) * a, bed0 * dx + (k + 0.5) * a});
+    test::add_cubic_lattice(p, s.species[0], nxy * per_cell, (bed1 - bed0) * per_cell, a, bed0 * dx);
   });
   BedResult r;
   for (int n = 0; n < steps; ++n) r.dt = sys->cs->step().dt_fluid;

@@ -61,12 +61,7 @@ std::unique_ptr<test::CoupledSystem> uniform_bed(double U0, double dt, DragCoupl
   s.coupled.coupling = coupling;
   s.coupled.implicit.method = method;
   s.coupled.implicit.tol = 1e-9;
-  auto sys = test::make_system(s, [&](Particles& p) {
-    int64_t id = 0;
-    for (int k = 0; k < 4; ++k)
-      for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) p.add(id++, 0, s.species[0], {(i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a});
-  });
+  auto sys = test::make_system(s, [&](Particles& p) { test::add_cubic_lattice(p, s.species[0], 4, 4, a, 0.0); });
   sys->air.u.fill(U0);
   return sys;
 }
@@ -205,12 +200,7 @@ double forchheimer_gradient(double U, double dt_max, double cfl, int steps, Drag
   s.coupled.coupling = coupling;
   s.coupled.implicit.tol = 1e-8;
   auto sys = test::make_system(s, [&](Particles& p) {
-    const int n_xy = nxy * per_cell, n_z = (bed1 - bed0) * per_cell;
-    int64_t id = 0;
-    for (int k = 0; k < n_z; ++k)
-      for (int j = 0; j < n_xy; ++j)
-        for (int i = 0; i < n_xy; ++i)
-          p.add(id++, 0, s.species[0], {(i + 0.5) * a, (j + 0.5) * a, bed0 * dx + (k + 0.5) * a});
+    test::add_cubic_lattice(p, s.species[0], nxy * per_cell, (bed1 - bed0) * per_cell, a, bed0 * dx);
   });
   long iters = 0;
   for (int n = 0; n < steps; ++n) {
