@@ -82,7 +82,10 @@ ImplicitDragSolver::ImplicitDragSolver(long n, ImplicitDragOptions opt)
     throw Error("implicit drag: KINInit failed");
   KINSetUserData(m.kin, impl_.get());
   KINSetNumMaxIters(m.kin, opt_.max_iterations);
-  KINSetFuncNormTol(m.kin, opt_.tol);
+  // KINSOL's own stopping test (on its Anderson-updated differences) passed with our
+  // max |G(u) - u| at its last evaluation 0.3-1.4 % above the same tolerance on the slab
+  // (fluid steps 1e-4 .. 4e-4 s); half the tolerance leaves that margin to our test.
+  KINSetFuncNormTol(m.kin, 0.5 * opt_.tol);
   KINSetPrintLevel(m.kin, 0);
   KINSetErrHandlerFn(m.kin, [](int, const char*, const char*, char*, void*) {}, nullptr);  // stats say it
   if (m.newton) {
@@ -117,9 +120,8 @@ ImplicitDragStats ImplicitDragSolver::solve(const Map& G, std::vector<double>& u
   if (m.newton) KINGetNumLinIters(m.kin, &nli);
   st.iterations = static_cast<int>(nni);
   st.linear_iterations = nli;
-  // KINSOL's own test (on its scaled norms, after its Anderson update) may pass where ours
-  // on the last evaluation does not quite (measured: 1.006e-6 against a tolerance of 1e-6);
-  // its returned iterate is then one evaluation further (counted like every other).
+  // Should KINSOL's test still pass where ours does not, its returned iterate is evaluated
+  // once more (counted like every other) before the step is refused.
   if (st.kinsol_flag >= 0 && st.evaluations > 0 && st.residual > opt_.tol) {
     std::vector<double> g(m.n);
     m.evaluate(N_VGetArrayPointer_Serial(m.u), g.data());
