@@ -36,7 +36,7 @@ namespace cgdem {
 
 struct ImplicitDragOptions {
   std::string method = "anderson";  // "anderson" | "newton"
-  double tol = 1e-5;                // [m/s] max |G(u) - u| over the faces 
+  double tol = 1e-5;                // [m/s] max |G(u) - u| over the faces
   int max_iterations = 30;          // nonlinear iterations (KINSetNumMaxIters)
   int depth = 1;                    // Anderson depth m (method "anderson")
 
