@@ -78,7 +78,6 @@ void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
   ex_.mean_parcel_velocities(p, w_.size(), dt, vbar_);
   air_n_ = air_;            // u^n, p^n (the guess of the first solve), eps^n, eps^{n+1}
   fluid::FluidState trial = air_;  // holds the iterate u^{n+1,k} and eps^{n+1} for the coefficient
-  std::vector<double> c_in;
   int pressure_iterations = 0;
   // G(u): the air step from t^n with the drag coefficient at u. Its pressure starts from
   // the previous evaluation's (a warm start: the result does not depend on it beyond the

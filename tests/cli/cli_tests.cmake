@@ -31,13 +31,16 @@ add_test(NAME cli.tiny_air_case_runs_implicit_drag
                  --set air.coupling=implicit --output ${PROJECT_BINARY_DIR}/cli_out/tiny_air_implicit)
 set_tests_properties(cli.tiny_air_case_runs_implicit_drag PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "drag: implicit.*KINSOL anderson.*implicit drag: [0-9]+ nonlinear solves.*particles 300 \\(left the domain: 0, centre inside a wall: 0\\)")
-# Checkpoint and restart: bit-identical continuation, in vacuum, with air, and with air
-# and a moving wall (the restart lands while the paddle accelerates through the parcels).
-foreach(variant vacuum air moving_wall)
+# Checkpoint and restart: bit-identical continuation, in vacuum, with air (semi-implicit and
+# implicit drag coupling), and with air and a moving wall (the restart lands while the
+# paddle accelerates through the parcels).
+foreach(variant vacuum air air_implicit_drag moving_wall)
   set(extra "")
   set(case ${PROJECT_SOURCE_DIR}/tests/cli/base.toml)
   if(variant STREQUAL "air")
     set(extra "--set;air.dx=1e-3")
+  elseif(variant STREQUAL "air_implicit_drag")
+    set(extra "--set;air.dx=1e-3;--set;air.coupling=implicit")
   elseif(variant STREQUAL "moving_wall")
     set(case ${PROJECT_SOURCE_DIR}/tests/cli/moving_wall.toml)
   endif()
