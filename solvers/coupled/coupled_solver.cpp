@@ -26,6 +26,10 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   }
   air_.eps_old = air_.eps;
   if (params_.coupling == DragCoupling::Implicit) {
+    for (int side = 0; side < 6; ++side)  // the air solver's sync is set before this solver is made
+      if (fluid_.sync().is_cut(side))
+        throw Error("coupled solver: the implicit drag coupling runs on one process only (air.coupling = "
+                    "\"implicit\" over several MPI ranks is not implemented)");
     const auto& g = air_.grid;
     long n = 0;
     for (int d = 0; d < 3; ++d) {
@@ -68,10 +72,6 @@ void unpack_faces(const double* in, fluid::FluidState& s) {
 }  // namespace
 
 void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
-  for (int side = 0; side < 6; ++side)
-    if (fluid_.sync().is_cut(side))
-      throw Error("coupled step: the implicit drag coupling runs on one process only (air.coupling = \"implicit\" "
-                  "with several MPI ranks is not implemented)");
   Particles& p = dem_.particles();
   const double dt = st.dt_fluid;
   const auto frame = dem_.scene().at(t_end);
@@ -87,9 +87,8 @@ void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
     { auto t = timers_.scope(t_deposit_);
       ex_.drag_at(trial, w_, p, vbar_, c_);
       ex_.deposit_drag(w_, c_, vbar_, src_); }
-    const fluid::Field p_guess = air_.p;
-    air_ = air_n_;
-    air_.p = p_guess;
+    air_.u = air_n_.u, air_.v = air_n_.v, air_.w = air_n_.w;  // the state of t^n but its pressure
+    air_.eps = air_n_.eps, air_.eps_old = air_n_.eps_old, air_.t = air_n_.t;
     st.fluid = fluid_.advance(air_, frame, src_, dt);
     pressure_iterations += st.fluid.pressure_iterations;
     pack_faces(air_, out);

@@ -29,7 +29,8 @@
 //   [air.implicit]  (coupling = "implicit") method = "anderson" (KINSOL fixed point with
 //                   Anderson acceleration) | "newton" (KINSOL Newton-SPGMR), tolerance = 1e-5
 //                   (m/s, in (0, 1]: max |G(u) - u| over the faces), max_iterations = 30
-//                   (1 .. 1000), depth = 4 (Anderson depth, 0 .. 20)
+//                   (1 .. 1000), depth = 1 (Anderson depth, 0 .. 20; docs/coupling.md
+//                   says why 1)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
 //                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa, |p| <= 1e7)
 #pragma once

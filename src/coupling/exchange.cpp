@@ -1,6 +1,7 @@
 #include "coupling/exchange.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "fluid/boundary.hpp"
 
@@ -144,19 +145,47 @@ void Exchange::air_to_parcels(const fluid::FluidState& air, const ParcelWeights&
   }
 }
 
-void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
-                               Particles& p) const {
-  const int n = static_cast<int>(w.size());
+template <class Impulse>
+void Exchange::kick_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p, Impulse impulse) const {
+  const long n = static_cast<long>(w.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
-  for (int i = 0; i < n; ++i) {
+  for (long i = 0; i < n; ++i) {
     Vec3 u;
     for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
-    const double a = dt_f * p.drag[i];
-    const Vec3 dj = (a / (1 + a * p.inv_mass[i])) * (u - p.u_fluid[i]);
+    const Vec3 dj = impulse(i, u);
     const Vec3 v0 = p.v[i];
     p.v[i] += p.inv_mass[i] * dj;
     p.j_drag[i] += dj;
     p.w_fluid[i] += dot(dj, 0.5 * (v0 + p.v[i]));
+  }
+}
+
+void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
+                               Particles& p) const {
+  kick_parcels(air, w, p, [&](long i, const Vec3& u) {
+    const double a = dt_f * p.drag[i];
+    return (a / (1 + a * p.inv_mass[i])) * (u - p.u_fluid[i]);
+  });
+}
+
+template <class Coefficients>
+void Exchange::deposit_sources(const ParcelWeights& w, fluid::Sources& src, Coefficients coef) const {
+  for (int d = 0; d < 3; ++d) {
+    src.K[d] = fluid::make_face_field(g_, d);
+    src.Kv[d] = fluid::make_face_field(g_, d);
+  }
+  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
+    const auto [k, kv] = coef(i);
+    if (k == 0) continue;
+    for (int d = 0; d < 3; ++d) {
+      deposit(w.face[d][i], k, src.K[d]);
+      deposit(w.face[d][i], kv[d], src.Kv[d]);
+    }
+  }
+  for (int d = 0; d < 3; ++d) {
+    sync_periodic_face(d, periodic_, src.K[d]);
+    sync_periodic_face(d, periodic_, src.Kv[d]);
+    if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
   }
 }
 
@@ -189,64 +218,29 @@ void Exchange::deposit_drag(const ParcelWeights& w, const std::vector<double>& c
   if (c.size() != w.size() || vbar.size() != w.size())
     throw Error("exchange: deposit_drag needs one coefficient and one mean velocity per parcel");
   const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
-  for (int d = 0; d < 3; ++d) {
-    src.K[d] = fluid::make_face_field(g_, d);
-    src.Kv[d] = fluid::make_face_field(g_, d);
-  }
-  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
+  deposit_sources(w, src, [&](size_t i) {
     const double k = c[i] * inv_vc;
-    if (k == 0) continue;
-    for (int d = 0; d < 3; ++d) {
-      deposit(w.face[d][i], k, src.K[d]);
-      deposit(w.face[d][i], k * vbar[i][d], src.Kv[d]);
-    }
-  }
-  for (int d = 0; d < 3; ++d) {
-    sync_periodic_face(d, periodic_, src.K[d]);
-    sync_periodic_face(d, periodic_, src.Kv[d]);
-    if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
-  }
+    return std::pair{k, k * vbar[i]};
+  });
 }
 
 void Exchange::correct_parcels_implicit(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
                                         const std::vector<double>& c, const std::vector<Vec3>& vbar,
                                         Particles& p) const {
-  const long n = static_cast<long>(w.size());
   if (c.size() != w.size() || vbar.size() != w.size())
     throw Error("exchange: correct_parcels_implicit needs one coefficient and one mean velocity per parcel");
-#pragma omp parallel for schedule(static) if (n >= 2048)
-  for (long i = 0; i < n; ++i) {
-    Vec3 u;
-    for (int d = 0; d < 3; ++d) u[d] = interpolate(w.face[d][i], air.vel(d));
+  kick_parcels(air, w, p, [&](long i, const Vec3& u) {
     const double a = dt_f * c[i];
-    const Vec3 dj = (1.0 / (1 + a * p.inv_mass[i])) * (a * (u - vbar[i]) - p.j_drag[i]);
-    const Vec3 v0 = p.v[i];
-    p.v[i] += p.inv_mass[i] * dj;
-    p.j_drag[i] += dj;
-    p.w_fluid[i] += dot(dj, 0.5 * (v0 + p.v[i]));
-  }
+    return (1.0 / (1 + a * p.inv_mass[i])) * (a * (u - vbar[i]) - p.j_drag[i]);
+  });
 }
 
 void Exchange::parcels_to_air(const Particles& p, const ParcelWeights& w, double dt_f, fluid::Sources& src) const {
   const double inv_vc = 1.0 / (g_.dx * g_.dx * g_.dx);
-  for (int d = 0; d < 3; ++d) {
-    src.K[d] = fluid::make_face_field(g_, d);
-    src.Kv[d] = fluid::make_face_field(g_, d);
-  }
-  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
+  deposit_sources(w, src, [&](size_t i) {
     const double c = p.drag[i] * inv_vc;
-    if (c == 0) continue;
-    const Vec3 cv = inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i]);  // c vbar
-    for (int d = 0; d < 3; ++d) {
-      deposit(w.face[d][i], c, src.K[d]);
-      deposit(w.face[d][i], cv[d], src.Kv[d]);
-    }
-  }
-  for (int d = 0; d < 3; ++d) {
-    sync_periodic_face(d, periodic_, src.K[d]);
-    sync_periodic_face(d, periodic_, src.Kv[d]);
-    if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
-  }
+    return std::pair{c, inv_vc * (p.drag[i] * p.u_fluid[i] - (1.0 / dt_f) * p.j_drag[i])};  // c, c vbar
+  });
 }
 
 }  // namespace cgdem::coupling

@@ -145,6 +145,13 @@ class Exchange {
   std::array<fluid::Field, 3> pressure_gradient(const fluid::FluidState& air) const;
   AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const ParcelWeights& w,
                    size_t i) const;
+  // K, Kv of src from coef(i) = (c_i/dx^3, c_i vbar_i/dx^3) per parcel: deposited serially in
+  // parcel order, then periodic images folded and the blocks over ranks summed.
+  template <class Coefficients>
+  void deposit_sources(const ParcelWeights& w, fluid::Sources& src, Coefficients coef) const;
+  // Adds impulse(i, u^{n+1}(x_i)) to every parcel's velocity, drag impulse and fluid work.
+  template <class Impulse>
+  void kick_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p, Impulse impulse) const;
   Weights cell_weights(const Vec3& x, const fluid::Field& layout) const;
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
   const fluid::IbmFractions* walls_ = nullptr;
