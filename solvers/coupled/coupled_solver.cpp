@@ -22,9 +22,10 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   {
     coupling::ParcelWeights w;
     ex_.weights(dem_.particles(), dem_.owned(), w);
-    void_stats_ = ex_.void_fraction(dem_.particles(), w, air_.eps);
+    void_stats_ = ex_.void_fraction(dem_.particles(), w, air_.eps, por_);
   }
   air_.eps_old = air_.eps;
+  ex_.set_void_fields(&por_);
   if (params_.coupling == DragCoupling::Implicit) {
     for (int side = 0; side < 6; ++side)  // the air solver's sync is set before this solver is made
       if (fluid_.sync().is_cut(side))
@@ -108,13 +109,15 @@ void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
 
 void CoupledSolver::walls_at(double t) {
   // Cached by body position: only the band around the moving parts is re-evaluated.
-  fluid::update_ibm(air_.grid, dem_.scene().at(t), fluid_.params().ibm_samples, walls_);
+  frame_ = dem_.scene().at(t);
+  fluid::update_ibm(air_.grid, frame_, fluid_.params().ibm_samples, walls_);
   // Over MPI ranks the masks read the fractions beyond the cuts (serial: nothing to do).
   fluid::FieldSync& sync = fluid_.sync();
   sync.copy_ghosts(walls_.alpha_cell, fluid::kCells);
   for (int d = 0; d < 3; ++d) sync.copy_ghosts(walls_.alpha_face[d], d);
   walls_.any_solid = sync.any(walls_.any_solid);  // a block's ghosts may reach walls it has none of
   ex_.set_walls(&walls_);
+  ex_.set_frame(&frame_);
 }
 
 // The parcels' kernel weights at their current positions with the walls at t. They stay
@@ -152,13 +155,22 @@ CoupledStepStats CoupledSolver::step() {
   const double t_end = air_.t + st.dt_fluid;
   Particles& p = dem_.particles();
 
-  if (!weights_fresh_) weights_at(air_.t);                            // kernel weights at x^n, alpha at t^n
+  if (!weights_fresh_) {                                              // kernel weights at x^n, alpha at t^n
+    weights_at(air_.t);
+    if (ex_.params().wall_porosity == coupling::WallPorosity::Packing) {  // the mixture at t^n (a start
+      fluid::Field eps_n = air_.eps;                                        // or a restart)
+      auto t = timers_.scope(t_map_);
+      ex_.void_fraction(p, w_, eps_n, por_);
+    }
+  }
   { auto t = timers_.scope(t_gather_);
     ex_.air_to_parcels(air_, w_, p); }                                 // 1. u_f, c_p, f_ext at t^n
   advance_particles(st.substeps);                                     // 2. DEM substeps
   weights_at(t_end);                                                  //    x^{n+1}, alpha at t^{n+1}
   { auto t = timers_.scope(t_map_);
-    void_stats_ = ex_.void_fraction(p, w_, air_.eps); }               // 3. eps^{n+1}
+    std::swap(mix_old_, por_.mix);
+    void_stats_ = ex_.void_fraction(p, w_, air_.eps, por_);           // 3. eps^{n+1}
+    ex_.porosity_source(por_, mix_old_, air_.eps, air_.eps_old, st.dt_fluid, src_.mass); }
   if (implicit_ && params_.feedback) {
     implicit_air_step(t_end, st);                                     // 4'-5'. air, drag at u^{n+1}
     if (params_.move_particles) {
@@ -167,7 +179,7 @@ CoupledStepStats CoupledSolver::step() {
   } else {
     { auto t = timers_.scope(t_deposit_);
       if (params_.feedback) ex_.parcels_to_air(p, w_, st.dt_fluid, src_);  // 4. K, Kv (eq. 14)
-      else src_ = {}; }
+      else src_.K = src_.Kv = {}; }
     st.fluid = fluid_.advance(air_, dem_.scene().at(t_end), src_, st.dt_fluid);  // 5. air
     if (params_.move_particles) {
       auto t = timers_.scope(t_gather_);

@@ -8,7 +8,9 @@
 //                       drag c_p (u_f - v) integrated implicitly in each kick; the drag
 //                       impulse J_p each parcel receives is accumulated
 //   3. void fraction    eps^{n+1} from the parcel positions at t^{n+1} (kernel mapping,
-//                       masked by the wall fractions at t^{n+1}, those the air step uses)
+//                       masked by the wall fractions at t^{n+1}, those the air step uses);
+//                       next to walls the porosity of the packing, with the continuity
+//                       source that keeps the non-solid volume balanced (exchange.hpp)
 //   4. parcels -> air   K = sum w c_p / V_cell, Kv = sum w (c_p u_f - J_p/dt_f) / V_cell (eq. 14)
 //   5. air step         volume-averaged NS from eps^n to eps^{n+1} with the drag
 //                       K (vbar - u^{n+1}) implicit in u, IBM walls at t^{n+1}  (eqs. 12-13)
@@ -95,6 +97,11 @@ class CoupledSolver {
   coupling::ParcelWeights w_;
   bool weights_fresh_ = false;
   fluid::IbmFractions walls_;
+  geometry::Scene::Frame frame_;  // the walls of walls_ (the capacities' phi)
+  // Step 3's mixture fraction and capacities at t^{n+1} (por_) and the mixture at t^n: the
+  // air's continuity source next to walls (coupling/exchange.hpp, "Porosity next to walls").
+  coupling::VoidFields por_;
+  fluid::Field mix_old_;
   PhaseTimers timers_;
   int t_weights_, t_gather_, t_map_, t_deposit_;
   // Implicit coupling: the solver, the parcels' mean velocities and coefficients, the air

@@ -152,6 +152,7 @@ void FluidSolver::check_inputs(const FluidState& s, const Sources& src, double d
     check_source(src.Kv[d], g_, d, "Kv");
     check_source(src.f_explicit[d], g_, d, "f_explicit");
   }
+  if (!src.mass.empty() && src.mass.extent() != g_.n()) throw Error("fluid: source 'mass' does not match the cells");
   auto t = timers_.scope("checks");
   auto ok = [&](int i, int j, int k) {
     return s.eps(i, j, k) > 0 && s.eps(i, j, k) <= 1 && s.eps_old(i, j, k) > 0 && s.eps_old(i, j, k) <= 1;
@@ -175,8 +176,8 @@ void FluidSolver::check_inputs(const FluidState& s, const Sources& src, double d
 }
 
 // The divergence residuals and the Courant number of the state after a step.
-void FluidSolver::step_statistics(const FluidState& s, double dt, StepStats& st) const {
-  const Divergence dv = divergence(s, dt);
+void FluidSolver::step_statistics(const FluidState& s, const Sources& src, double dt, StepStats& st) const {
+  const Divergence dv = divergence(s, src.mass, dt);
   st.max_divergence = dv.fluid;
   st.max_divergence_walls = dv.walls;
   double umax_d[3];
@@ -242,14 +243,14 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
   project(s, src, dt, ustar_, vel, s.p, st);
   {
     auto t = timers_.scope("diagnostics");
-    step_statistics(s, dt, st);
+    step_statistics(s, src, dt, st);
   }
   s.eps_old = s.eps;
   s.t += dt;
   return st;
 }
 
-FluidSolver::Divergence FluidSolver::divergence(const FluidState& s, double dt) const {
+FluidSolver::Divergence FluidSolver::divergence(const FluidState& s, const Field& mass, double dt) const {
   // E on a face is the mean of its two cells (ghost cells of eps filled by advance()).
   auto flux = [&](int d, int i, int j, int k) {
     std::array<int, 3> e = unit(d);
@@ -265,6 +266,7 @@ FluidSolver::Divergence FluidSolver::divergence(const FluidState& s, double dt) 
     for (int j = 0; j < g_.ny; ++j)
       for (int i = 0; i < g_.nx; ++i) {
         double div = (s.eps(i, j, k) - s.eps_old(i, j, k)) / dt;
+        if (!mass.empty()) div += mass(i, j, k);
         for (int d = 0; d < 3; ++d) {
           std::array<int, 3> e = unit(d);
           div += (flux(d, i + e[0], j + e[1], k + e[2]) - flux(d, i, j, k)) / g_.dx;

@@ -55,13 +55,14 @@ class FluidSolver {
   // Largest stable step: min(dt_max, cfl dx / sum_d max|u_d|, visc_safety dx^2 rho / (6 mu)),
   // the maxima over the whole grid (over every rank's block).
   double stable_dt(const FluidState& s) const;
-  // max over cells of |(eps - eps_old)/dt + div(E u)| for the state as it is [1/s]: over the
+  // max over cells of |(eps - eps_old)/dt + div(E u) + mass| for the state as it is [1/s]
+  // (mass: Sources::mass of the step, empty for none): over the
   // cells with some fluid (alpha_cell < 1, where the pressure equation imposes it) and over
   // the cells entirely inside walls (alpha_cell = 1, where nothing imposes it).
   struct Divergence {
     double fluid = 0, walls = 0;
   };
-  Divergence divergence(const FluidState& s, double dt) const;
+  Divergence divergence(const FluidState& s, const Field& mass, double dt) const;
 
   const FluidParams& params() const { return params_; }
   const IbmFractions& ibm() const { return ibm_; }
@@ -80,7 +81,7 @@ class FluidSolver {
                StepStats& st);
   void set_pressure_coefficients(const Sources& src, double dt);
   void check_inputs(const FluidState& s, const Sources& src, double dt);
-  void step_statistics(const FluidState& s, double dt, StepStats& st) const;
+  void step_statistics(const FluidState& s, const Sources& src, double dt, StepStats& st) const;
 
   MacGrid g_;
   FluidParams params_;

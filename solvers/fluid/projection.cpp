@@ -1,7 +1,7 @@
 // FluidSolver::project: the pressure equation and the velocity correction (eq. 12).
 //
 //   a_f   = (1 - alpha_f) E_f^2 / (E_f rho/dt + K_f)                   (face coefficient)
-//   div(a grad p)_c = sum_d [ (E u*)_{c+d} - (E u*)_c ]/dx + (eps_c^{n+1} - eps_c^n)/dt
+//   div(a grad p)_c = sum_d [ (E u*)_{c+d} - (E u*)_c ]/dx + (eps_c^{n+1} - eps_c^n)/dt + mass_c
 //   u_f   = u*_f - (a_f / E_f) (p_c - p_{c-d}) / dx                    (active faces)
 //
 // Open sides hold p = p_open on the boundary face: the pressure solver's Open row assumes
@@ -69,7 +69,6 @@ void FluidSolver::set_pressure_coefficients(const Sources& src, double dt) {
 
 void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Faces& ustar, const Vel& vel, Field& p,
                           StepStats& st) {
-  (void)src;
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const double dx = g_.dx;
   {
@@ -93,6 +92,7 @@ void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Fa
       for (int j = 0; j < ny; ++j) {
         const long oc = s.eps.index(0, j, k);
         const double *en = s.eps.data() + oc, *eo = s.eps_old.data() + oc, *pr = p.data() + oc;
+        const double* ms = src.mass.empty() ? nullptr : src.mass.data() + oc;
         const long ox = E_new_[0].index(0, j, k), oy = E_new_[1].index(0, j, k), oz = E_new_[2].index(0, j, k);
         const double *Ex = E_new_[0].data() + ox, *ux = ustar[0].data() + ox;
         const double *Ey = E_new_[1].data() + oy, *uy = ustar[1].data() + oy;
@@ -112,6 +112,7 @@ void FluidSolver::project(const FluidState& s, const Sources& src, double dt, Fa
           r += (Ez[i + sz] * uz[i + sz] - Ez[i] * uz[i]) / dx;
           if (ozl) r -= open_term(2, 0, i, j, k);
           if (ozh) r -= open_term(2, 1, i, j, k);
+          if (ms) r += ms[i];
           rhs_[q0 + i] = r;
           phi_[q0 + i] = pr[i];
         }

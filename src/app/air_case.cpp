@@ -101,6 +101,9 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   a.exchange.law = coupling::parse_drag_law(s.string_or("drag", "ergun-wen-yu", coupling::drag_law_names()));
   a.exchange.air = {f.rho, f.mu};
   a.exchange.eps_min = s.number_or("eps_min", 0.2, Range{0.0, 1.0, true, true});
+  a.exchange.wall_porosity = s.string_or("wall_porosity", "packing", {"packing", "cell"}) == "cell"
+                                 ? coupling::WallPorosity::Cell
+                                 : coupling::WallPorosity::Packing;
   a.exchange.bc = f.bc;
   f.validate();
   return a;

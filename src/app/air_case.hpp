@@ -14,6 +14,9 @@
 //   time_order = 2            # 1: forward Euler predictor, 2: Heun
 //   drag = "ergun-wen-yu"     # eqs. 9-11 with the original diameter; the others: coupling/drag.hpp (kDragLaws)
 //   eps_min = 0.2             # lower bound of the mapped void fraction
+//   wall_porosity = "packing" # cells next to walls: the porosity of the packing the parcels
+//                             # form (coupling/exchange.hpp); "cell": 1 - V_s/dx^3 of the
+//                             # whole cell, walls counted as void (before 4 December 2026)
 //   feedback = true           # false: one-way coupling (the air ignores the parcels)
 //   coupling = "semi-implicit" # drag coefficient frozen at the start of the step; "implicit":
 //                             # at the step's end velocity, solved with the air by KINSOL

@@ -13,6 +13,10 @@ Exchange::Exchange(const fluid::MacGrid& g, const std::vector<Species>& species,
   for (const auto& s : species) {
     volume_.push_back(s.volume());
     d_original_.push_back(s.d_original);
+    const double r = 0.5 * s.diameter();
+    const auto it = std::find(radii_.begin(), radii_.end(), r);
+    radius_group_.push_back(static_cast<int>(it - radii_.begin()));
+    if (it == radii_.end()) radii_.push_back(r);
   }
   cells_ = cell_lattice(g_, periodic_);
   cell_layout_ = fluid::make_cell_field(g_);
@@ -73,14 +77,31 @@ VoidStats Exchange::void_fraction(const Particles& p, fluid::Field& eps) const {
 }
 
 VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const {
+  VoidFields vf;
+  return void_fraction(p, w, eps, vf, false);
+}
+
+VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps,
+                                  VoidFields& vf) const {
+  return void_fraction(p, w, eps, vf, params_.wall_porosity == WallPorosity::Packing);
+}
+
+VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf,
+                                  bool packing) const {
   fluid::Field vs = fluid::make_cell_field(g_);
+  // Per distinct parcel radius too, when the capacities are wanted for several radii.
+  const size_t groups = packing ? radii_.size() : 0;
+  std::vector<fluid::Field> vs_r(groups > 1 ? groups : 0, fluid::make_cell_field(g_));
   VoidStats st;
   for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
     const double V = volume_[p.species[i]];
     deposit(w.cell[i], V, vs);
+    if (!vs_r.empty()) deposit(w.cell[i], V, vs_r[radius_group_[p.species[i]]]);
     st.parcel_volume += V;
   }
   if (sync_) sync_->sum_deposits(vs, fluid::kCells);
+  if (sync_)
+    for (auto& f : vs_r) sync_->sum_deposits(f, fluid::kCells);
   const double vc = g_.dx * g_.dx * g_.dx;
   for (int k = 0; k < g_.nz; ++k)
     for (int j = 0; j < g_.ny; ++j)
@@ -91,8 +112,132 @@ VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fl
         if (raw < params_.eps_min) ++st.clipped_cells;
         eps(i, j, k) = std::max(params_.eps_min, raw);
       }
+  vf.mix = eps;
+  vf.normalized = false;
+  if (groups > 0) porosity_of_packing(vs, vs_r, vf, eps, st);
   if (sync_) sync_->fill_scalar(eps, fluid::ScalarKind::ZeroGradient);  // the parcels read it there
   return st;
+}
+
+// eps = max(eps_min, 1 - sum_r V_s,r/(C_r dx^3)) where some capacity is below 1; vf.cap the
+// capacity the drag deposits are divided by (for several radii the solid-weighted harmonic
+// mean sum V_s,r / sum (V_s,r/C_r), their smallest where no solid is).
+void Exchange::porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf,
+                                   fluid::Field& eps, VoidStats& st) const {
+  if (vs_r.empty()) vs_r.push_back(vs);  // one radius: its solid is all the solid
+  const bool one = vs_r.size() == 1;
+  if (sync_)  // the ghost layer's solid decides which nodes near a cut are evaluated
+    for (auto& f : vs_r) sync_->copy_ghosts(f, fluid::kCells);
+  std::vector<fluid::Field> cap(radii_.size(), fluid::make_cell_field(g_));
+  for (size_t r = 0; r < radii_.size(); ++r) capacity(radii_[r], vs_r[r], cap[r]);
+  vf.cap = cap[0];
+  const double vc = g_.dx * g_.dx * g_.dx;
+  long normalized = 0;
+  for (int k = 0; k < g_.nz; ++k)
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i) {
+        bool cut = false;
+        for (const auto& c : cap) cut = cut || std::fabs(c(i, j, k) - 1.0) > 1e-12;  // C > 1 too: a mask moved weight there
+        if (!cut) continue;
+        double solid = 0, inv = 0, cmin = 1;
+        for (size_t r = 0; r < cap.size(); ++r) {
+          const double v = vs_r[r](i, j, k), c = cap[r](i, j, k);
+          cmin = std::min(cmin, c);
+          if (!(v > 0)) continue;
+          solid += v;
+          inv += c > 0 ? v / c : INFINITY;
+        }
+        if (!one) vf.cap(i, j, k) = solid > 0 ? (std::isfinite(inv) ? solid / inv : 0.0) : cmin;
+        if (!(solid > 0)) continue;
+        ++normalized;
+        // Bounded by the densest random packing unless the cell itself holds more solid: the
+        // first layer of parcels on a wall is ordered (centres at r, where the estimate's
+        // uniform reach puts few), and V_s/C over-counts it.
+        const double phi = std::isfinite(inv) ? inv / vc : INFINITY;
+        const double phi_l = phi <= params_.packing_max ? phi : std::max(params_.packing_max, solid / vc);
+        eps(i, j, k) = std::max(params_.eps_min, 1 - phi_l);
+      }
+  if (sync_) sync_->copy_ghosts(vf.cap, fluid::kCells);
+  st.normalized_cells = normalized;
+  vf.normalized = sync_ ? sync_->any(normalized > 0) : normalized > 0;
+}
+
+double Exchange::face_capacity(int d, int i, int j, int k) const {
+  const fluid::Field& c = void_fields_->cap;
+  const std::array<int, 3> n = g_.n();
+  std::array<int, 3> lo{i, j, k}, hi{i, j, k};
+  lo[d] -= 1;  // face i lies between cells i-1 and i
+  if (periodic_[d]) lo[d] = (lo[d] + n[d]) % n[d], hi[d] %= n[d];
+  const bool has_lo = lo[d] >= 0 || cells_.ghost_side[2 * d], has_hi = hi[d] < n[d] || cells_.ghost_side[2 * d + 1];
+  if (has_lo && has_hi) return 0.5 * (c(lo[0], lo[1], lo[2]) + c(hi[0], hi[1], hi[2]));
+  return has_lo ? c(lo[0], lo[1], lo[2]) : c(hi[0], hi[1], hi[2]);
+}
+
+void Exchange::porosity_source(const VoidFields& now, const fluid::Field& mix_old, const fluid::Field& eps_new,
+                               const fluid::Field& eps_old, double dt_f, fluid::Field& mass) const {
+  const std::array<int, 3> n = g_.n();
+  mass = fluid::make_cell_field(g_);
+  fluid::Field share = fluid::make_cell_field(g_);  // mix - eps at t^{n+1}: the walls' share
+  bool any = false;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const double m = ((now.mix(i, j, k) - mix_old(i, j, k)) - (eps_new(i, j, k) - eps_old(i, j, k))) / dt_f;
+        mass(i, j, k) = m;
+        share(i, j, k) = now.mix(i, j, k) - eps_new(i, j, k);
+        any = any || m != 0 || share(i, j, k) != 0;
+      }
+  if (!(sync_ ? sync_->any(any) : any)) {
+    mass = fluid::Field{};
+    return;
+  }
+  if (!(frame_ && frame_->scene && !frame_->scene->empty())) return;
+  if (sync_) sync_->copy_ghosts(share, fluid::kCells);
+  // The walls' share of the non-solid volume, mix - eps, moves with the wall: the flux
+  // (mix_f - E_f) U_B through the faces of the cells where they differ, U_B the velocity of
+  // the nearest wall (the domain's boundary faces are the sides' business; a cut between
+  // ranks is not a boundary: its faces are handled by both blocks, each for its own cell).
+  // Each face once: by its low cell when that holds a share, else by its high cell.
+  std::array<int, 3> lo_c{}, hi_c{};  // cells visited: the block's and its ghost layer on cut sides
+  for (int d = 0; d < 3; ++d)
+    lo_c[d] = cells_.ghost_side[2 * d] ? -1 : 0, hi_c[d] = cells_.ghost_side[2 * d + 1] ? n[d] : n[d] - 1;
+  auto own = [&](const std::array<int, 3>& c) {
+    return c[0] >= 0 && c[0] < n[0] && c[1] >= 0 && c[1] < n[1] && c[2] >= 0 && c[2] < n[2];
+  };
+  auto share_at = [&](std::array<int, 3> c) {
+    for (int d = 0; d < 3; ++d) {
+      if (periodic_[d]) c[d] = (c[d] + n[d]) % n[d];
+      if (c[d] < lo_c[d] || c[d] > hi_c[d]) return 0.0;
+    }
+    return share(c[0], c[1], c[2]);
+  };
+  // Face f of axis d between cells lo and hi = f (each maybe outside the block).
+  auto face_flux = [&](int d, std::array<int, 3> lo, std::array<int, 3> f) {
+    const bool boundary_lo = !periodic_[d] && f[d] == 0 && !cells_.ghost_side[2 * d];
+    const bool boundary_hi = !periodic_[d] && f[d] == n[d] && !cells_.ghost_side[2 * d + 1];
+    if (boundary_lo || boundary_hi) return;
+    const double ws = 0.5 * (share_at(lo) + share_at(f));
+    if (ws == 0) return;
+    const double ub = frame_->wall_velocity(g_.face_centre(d, f[0], f[1], f[2]))[d];
+    if (ub == 0) return;
+    const double flux = ws * ub / g_.dx;
+    std::array<int, 3> hi = f;
+    if (periodic_[d]) lo[d] = (lo[d] + n[d]) % n[d], hi[d] = hi[d] % n[d];
+    if (own(hi)) mass(hi[0], hi[1], hi[2]) -= flux;  // leaves through hi's low face
+    if (own(lo)) mass(lo[0], lo[1], lo[2]) += flux;  // enters through lo's high face
+  };
+  for (int k = lo_c[2]; k <= hi_c[2]; ++k)
+    for (int j = lo_c[1]; j <= hi_c[1]; ++j)
+      for (int i = lo_c[0]; i <= hi_c[0]; ++i) {
+        if (share(i, j, k) == 0) continue;
+        const std::array<int, 3> c{i, j, k};
+        for (int d = 0; d < 3; ++d) {
+          const std::array<int, 3> u = fluid::unit(d);
+          const std::array<int, 3> below{i - u[0], j - u[1], k - u[2]}, up{i + u[0], j + u[1], k + u[2]};
+          face_flux(d, c, up);                                  // high face: c is its low cell
+          if (share_at(below) == 0) face_flux(d, below, c);     // low face, unless below handles it
+        }
+      }
 }
 
 std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState& air) const {
@@ -186,6 +331,23 @@ void Exchange::deposit_sources(const ParcelWeights& w, fluid::Sources& src, Coef
     sync_periodic_face(d, periodic_, src.K[d]);
     sync_periodic_face(d, periodic_, src.Kv[d]);
     if (sync_) sync_->sum_deposits(src.K[d], d), sync_->sum_deposits(src.Kv[d], d);
+  }
+  if (!(void_fields_ && void_fields_->normalized)) return;
+  // Per volume the packing fills: K/C_f, Kv/C_f where the capacity is below 1.
+  for (int d = 0; d < 3; ++d) {
+    const auto e = src.K[d].extent();
+    for (int k = 0; k < e[2]; ++k)
+      for (int j = 0; j < e[1]; ++j)
+        for (int i = 0; i < e[0]; ++i) {
+          if (src.K[d](i, j, k) == 0) continue;
+          const double c = face_capacity(d, i, j, k);
+          if (c >= 1.0) continue;
+          // The quadrature resolves a sub-cube (1/27 of a cell): a smaller capacity under a
+          // drag deposit is a stray of the kernel, not a smaller volume to spread it over.
+          const double inv = 1.0 / std::max(c, 1.0 / 27);
+          src.K[d](i, j, k) *= inv;
+          src.Kv[d](i, j, k) *= inv;
+        }
   }
 }
 

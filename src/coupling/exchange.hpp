@@ -40,6 +40,19 @@
 // with faces where the air moves. The boundary faces of the domain's wall sides are
 // masked the same way (prescribed velocity: a deposit there would be lost to the wall).
 // Conservation and adjointness hold as before.
+// Porosity next to walls (porosity.cpp; docs/coupling.md): with masked weights a cell that
+// a wall cuts receives less of a neighbouring parcel's volume than its share of the space
+// the parcel fills, and no parcel centre comes closer to a wall than its radius r, so
+// 1 - V_s/dx^3 of a cut cell (walls counted as void) reads 0.7-0.99 in powder packed at
+// 0.4, and the air found the powder next to every moving wall ~20-1000 times too
+// permeable. With WallPorosity::Packing the porosity is that of the packing:
+//   eps(c) = max(eps_min, 1 - V_s(c)/(C(c) dx^3)),  C(c) = (1/dx^3) Int_{phi >= r} w~_c(x) dx,
+// (V_s/(C dx^3) bounded by packing_max unless V_s/dx^3 itself exceeds it),
+// the kernel capacity of the cell for parcel centres (what a packing of solid fraction 1
+// filling every reachable place deposits there; 1 away from walls, so nothing changes
+// there). The whole cell's non-solid fraction mix = 1 - V_s/dx^3 is kept for the air's
+// continuity (porosity_source) and the drag deposits are divided by the face mean of C
+// (the drag per volume the packing fills).
 // Weights: every transfer of a step reads the same kernel weights of a parcel (its cell
 // stencil and its three face stencils, masked by the same walls), so they are built once
 // per position (ParcelWeights, in parallel) and handed to the transfers. Deposits run
@@ -57,18 +70,38 @@
 
 namespace cgdem::coupling {
 
+// How the porosity of a cell that walls cut (or that lies within a parcel radius of a wall)
+// is taken ("Porosity next to walls" below).
+enum class WallPorosity {
+  Packing,  // eps = 1 - V_s/(C dx^3): the porosity of the packing the parcels form (default)
+  Cell,     // eps = 1 - V_s/dx^3: the part of the whole cell not filled by solid, walls counted as void
+};
+
 struct ExchangeParams {
   DragLaw law = DragLaw::ErgunWenYu;
   AirProperties air;
   double eps_min = 0.2;                         // lower bound of the mapped void fraction
   fluid::FluidBoundary bc{};                    // of the air (periodic axes, pressure ghosts)
+  WallPorosity wall_porosity = WallPorosity::Packing;  // cells next to walls (below)
+  double packing_max = 0.64;  // bound of the normalized solid fraction V_s/(C dx^3): random
+                              // close packing of equal spheres (Scott & Kilgour 1969: 0.637)
 };
 
 struct VoidStats {
+  long normalized_cells = 0;  // cells whose porosity was normalized by a capacity C < 1
   double parcel_volume = 0;   // sum of V_p of the parcels mapped [m^3]
   double grid_volume = 0;     // sum over cells of V_s before clipping [m^3]
   long clipped_cells = 0;     // cells where 1 - V_s/dx^3 < eps_min
   double eps_min_raw = 1;     // smallest 1 - V_s/dx^3 before clipping
+};
+
+// What step 3 gives besides the porosity eps (exchange.hpp, "Porosity next to walls").
+struct VoidFields {
+  fluid::Field mix;  // max(eps_min, 1 - V_s/dx^3): the non-solid part of the whole cell (walls
+                     // count as void); its change over a step is what the parcels' motion
+                     // displaces (sum over cells of V_s is the parcels' volume)
+  fluid::Field cap;  // kernel capacity C of each cell for the parcels' centres (1 away from walls)
+  bool normalized = false;  // some cell has C < 1 (eps differs from mix there)
 };
 
 // The masked kernel weights of every parcel at one set of positions and wall fractions.
@@ -93,6 +126,8 @@ class Exchange {
   // parcels 0 .. w.size()-1 (precondition: built by weights() after the parcels last moved).
   // eps from the parcel positions (writes every interior cell of eps).
   VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps) const;
+  // The same, and the mixture fraction and capacities (walls and scene frame as set).
+  VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf) const;
   VoidStats void_fraction(const Particles& p, fluid::Field& eps) const;  // builds the weights
   // Sets p.u_fluid, p.drag and p.f_ext from the air state (u, p, eps of `air`).
   void air_to_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p) const;
@@ -122,6 +157,26 @@ class Exchange {
   // the coefficient of the substeps this is correct_parcels' kick.
   void correct_parcels_implicit(const fluid::FluidState& air, const ParcelWeights& w, double dt_f,
                                 const std::vector<double>& c, const std::vector<Vec3>& vbar, Particles& p) const;
+
+  // The air's continuity with the porosity of the packing next to walls: the cell source
+  //   m = [(mix^{n+1} - mix^n) - (eps^{n+1} - eps^n)]/dt_f + div((mix_f - E_f) U_B,f)
+  // [1/s] that turns the air solver's d(eps)/dt + div(E u) into
+  //   d(mix)/dt + div(E u + (mix_f - E_f) U_B) = 0,
+  // the balance of the non-solid volume of the cells when E is the packing's porosity (face
+  // means) and u the volume-weighted velocity of air and wall (eq. 18): mix - eps is the
+  // walls' share of a cell's non-solid volume, and it moves with the nearest wall (U_B, its
+  // velocity). Where everything translates with a wall the flux is mix U_B, as it is with
+  // eps = mix; next to static walls it is E u. mass is left empty when no cell is normalized.
+  void porosity_source(const VoidFields& now, const fluid::Field& mix_old, const fluid::Field& eps_new,
+                       const fluid::Field& eps_old, double dt_f, fluid::Field& mass) const;
+  // Capacities used by the drag deposits (K, Kv divided by the face mean of C, the drag per
+  // volume the parcels can fill; null or not normalized: undivided). Must stay valid.
+  void set_void_fields(const VoidFields* vf) { void_fields_ = vf; }
+  // The walls' positions for the capacities (phi of eq. 15; null: no walls). Must stay valid.
+  void set_frame(const geometry::Scene::Frame* frame) { frame_ = frame; }
+  // Kernel capacity C_r of the cells for parcel centres of radius r (porosity.cpp): 1 except
+  // at the nodes holding solid (solid > 0) near walls or the domain's ends.
+  void capacity(double r, const fluid::Field& solid, fluid::Field& cap) const;
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
   // Over MPI ranks their ghost layers on the cut sides must hold the neighbours' values.
@@ -154,7 +209,20 @@ class Exchange {
   void kick_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p, Impulse impulse) const;
   Weights cell_weights(const Vec3& x, const fluid::Field& layout) const;
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
+  VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf,
+                          bool packing) const;
+  void porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf, fluid::Field& eps,
+                           VoidStats& st) const;
+  // Capacity quadrature of one cell (porosity.cpp).
+  std::vector<unsigned char> near_walls(int reach) const;
+  bool plain_cell(int i, int j, int k, const std::vector<unsigned char>& near) const;
+  void deposit_cell_capacity(int i, int j, int k, double r, bool plain, fluid::Field& cap) const;
+  bool reachable_part(const Vec3& c, double h, double r, double& frac, Vec3& centroid) const;
+  // Face mean of the capacity C on face (i, j, k) of axis d (1 where not normalized).
+  double face_capacity(int d, int i, int j, int k) const;
   const fluid::IbmFractions* walls_ = nullptr;
+  const geometry::Scene::Frame* frame_ = nullptr;
+  const VoidFields* void_fields_ = nullptr;
   fluid::FieldSync* sync_ = nullptr;
   fluid::Field no_alpha_;
   // 1 on the boundary faces of the domain's Wall sides (their velocity is prescribed, so
@@ -166,6 +234,8 @@ class Exchange {
   ExchangeParams params_;
   std::array<bool, 3> periodic_{};
   std::vector<double> volume_, d_original_;  // per species
+  std::vector<int> radius_group_;             // per species: index into radii_
+  std::vector<double> radii_;                 // the distinct parcel radii [m]
   Lattice cells_;
   std::array<Lattice, 3> faces_;
 };

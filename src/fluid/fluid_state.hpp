@@ -58,6 +58,9 @@ struct Sources {
   std::array<Field, 3> K;           // implicit coefficient [kg m^-3 s^-1] per d-face
   std::array<Field, 3> Kv;          // K v_p [N/m^3] per d-face
   std::array<Field, 3> f_explicit;  // any other force density [N/m^3] per d-face
+  Field mass;  // [1/s] cells: added to d(eps)/dt + div(E u) of the continuity, which then
+               // reads d(eps)/dt + div(E u) + mass = 0 (a volume the solid or the walls
+               // displace beyond what eps shows: coupling/exchange.hpp, porosity_source)
 };
 
 struct StepStats {

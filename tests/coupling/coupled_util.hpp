@@ -1,4 +1,4 @@
-// A small coupled system for the verification tests: DEM + air on a box, no walls inside.
+// A small coupled system for the verification tests: DEM + air on a box, walls inside optional.
 #pragma once
 #include <cmath>
 #include <cstdio>
@@ -23,6 +23,8 @@ struct SystemSpec {
   DemParams dem;                   // dt, gravity (domain and periodic axes are set here)
   CoupledParams coupled;
   double eps_min = 0.2;
+  geometry::Scene scene;           // walls inside the box (none by default)
+  coupling::WallPorosity wall_porosity = coupling::WallPorosity::Packing;
 };
 
 inline fluid::MacGrid make_grid(int nx, int ny, int nz, double dx) {
@@ -38,7 +40,7 @@ std::unique_ptr<CoupledSystem> make_system(SystemSpec s, AddParticles add) {
   const auto& g = s.grid;
   s.dem.domain = {g.origin, g.origin + g.dx * Vec3{double(g.nx), double(g.ny), double(g.nz)}};
   for (int a = 0; a < 3; ++a) s.dem.periodic[a] = s.air.bc[2 * a].type == fluid::BcType::Periodic;
-  sys->dem = std::make_unique<DemSolver>(s.species, s.material, s.dem, geometry::Scene{});
+  sys->dem = std::make_unique<DemSolver>(s.species, s.material, s.dem, s.scene);
   add(sys->dem->particles());
   sys->air = fluid::make_fluid_state(g);
   sys->fluid = std::make_unique<fluid::FluidSolver>(g, s.air);
@@ -46,6 +48,7 @@ std::unique_ptr<CoupledSystem> make_system(SystemSpec s, AddParticles add) {
   ep.air = {s.air.rho, s.air.mu};
   ep.bc = s.air.bc;
   ep.eps_min = s.eps_min;
+  ep.wall_porosity = s.wall_porosity;
   sys->cs = std::make_unique<CoupledSolver>(*sys->dem, *sys->fluid, sys->air,
                                             coupling::Exchange(g, s.species, ep), s.coupled);
   return sys;

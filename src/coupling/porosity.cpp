@@ -1,0 +1,235 @@
+// Porosity next to walls: the kernel capacity of the cells and the porosity of the packing
+// (exchange.hpp, "Porosity next to walls"; docs/coupling.md).
+//
+//   C_r(j) = (1/dx^3) Int_{phi(x) >= r} w~_j(x) dx                          (capacity)
+//   eps(j) = max(eps_min, 1 - sum_r V_s,r(j) / (C_r(j) dx^3))                (porosity)
+//
+// w~_j is the parcels' own masked cell weight of node j (kernel.hpp), phi the walls' signed
+// distance (eq. 15) and r the radius of a parcel: the integral runs over every place a
+// parcel's centre can reach. A packing of solid fraction phi_s that fills those places
+// deposits V_s(j) = phi_s C(j) dx^3, so eps(j) = 1 - phi_s is the packing's own porosity
+// in every cell, whatever the walls cut off the cell and however the mask moved the kernel.
+// C = 1 exactly wherever neither a wall (alpha > 0 within the kernel's reach, or a place
+// closer than r to a wall) nor a domain end (whose nodes the kernel folds back) is near.
+//
+// Quadrature: each cell is split into 3 x 3 x 3 sub-cubes, each a pseudo-parcel of its
+// reachable volume at its reachable centroid (where phi = r crosses a sub-cube, both from
+// phi's linear approximation there, exact for plane walls), deposited with the parcels'
+// masked weights. Away from walls the 27
+// sub-cube centres of a cell are a lattice of spacing dx/3, on which the TSC weights sum
+// to the exact integral (the spline's transform vanishes at the multiples of 3/dx): the
+// cells of a node's neighbourhood with no wall near ("plain" cells) deposit the exact
+// tabulated values, and C = 1 is reproduced to round-off in the limit of no walls.
+#include <algorithm>
+#include <cmath>
+
+#include "coupling/exchange.hpp"
+
+namespace cgdem::coupling {
+
+namespace {
+
+constexpr int kSub = 3;  // sub-cubes per axis of a cell
+constexpr int kCol = 4;  // columns per axis of a sub-cube that a wall cuts
+
+// Sum over the 3 sub-cube centres of a cell at offset o (-1, 0, 1 from the node) of the
+// 1D TSC weight of the node, divided by 3: the quadrature's share of the node's integral
+// that one plain cell contributes along one axis.
+std::array<double, 3> plain_shares() {
+  std::array<double, 3> s{};
+  for (int o = -1; o <= 1; ++o) {
+    double sum = 0;
+    for (int q = 0; q < kSub; ++q) {
+      const double t = o + (q + 0.5) / kSub - 0.5;  // sub-cube centre relative to the node [dx]
+      const double a = std::fabs(t);
+      sum += a <= 0.5 ? 0.75 - t * t : (a < 1.5 ? 0.5 * (1.5 - a) * (1.5 - a) : 0.0);
+    }
+    s[o + 1] = sum / kSub;
+  }
+  return s;
+}
+
+}  // namespace
+
+// Cells near a wall: those within `reach` cells (box distance) of a cell with alpha > 0,
+// over the block and its ghost layers (reads clamped to the ghost layers' extent).
+std::vector<unsigned char> Exchange::near_walls(int reach) const {
+  const std::array<int, 3> n = g_.n();
+  const int gh = fluid::kGhost;
+  const std::array<int, 3> e{n[0] + 2 * gh, n[1] + 2 * gh, n[2] + 2 * gh};
+  const size_t total = static_cast<size_t>(e[0]) * e[1] * e[2];
+  std::vector<unsigned char> m(total, 0), t(total, 0);
+  if (!(walls_ && walls_->valid && walls_->any_solid)) return m;
+  const fluid::Field& al = walls_->alpha_cell;  // its layout is cell_layout_'s: index = padded offset
+  for (size_t q = 0; q < total; ++q) m[q] = al.data()[q] > 0;
+  const std::array<long, 3> st{1, e[0], static_cast<long>(e[0]) * e[1]};
+  for (int d = 0; d < 3; ++d) {  // separable dilation, one axis at a time
+    for (int k = 0; k < e[2]; ++k)
+      for (int j = 0; j < e[1]; ++j)
+        for (int i = 0; i < e[0]; ++i) {
+          const std::array<int, 3> q{i, j, k};
+          const long o = i + st[1] * j + st[2] * k;
+          unsigned char v = 0;
+          for (int s = -reach; s <= reach && !v; ++s) {
+            const int c = q[d] + s;
+            if (c >= 0 && c < e[d]) v = m[o + s * st[d]];
+          }
+          t[o] = v;
+        }
+    m.swap(t);
+  }
+  return m;
+}
+
+bool Exchange::plain_cell(int i, int j, int k, const std::vector<unsigned char>& near) const {
+  const std::array<int, 3> q{i, j, k}, n = g_.n();
+  for (int a = 0; a < 3; ++a)  // the kernel folds back the nodes beyond a domain end
+    if (!periodic_[a] && ((q[a] <= 0 && !cells_.ghost_side[2 * a]) || (q[a] >= n[a] - 1 && !cells_.ghost_side[2 * a + 1])))
+      return false;
+  return !near[cell_layout_.index(i, j, k)];
+}
+
+// The part of the sub-cube of side h centred at c where phi >= r, from phi's linear
+// approximation there (exact for a plane wall): its volume fraction and its centroid, by
+// kCol x kCol columns along the axis phi changes fastest on, each cut exactly. False when
+// nothing of it is reachable.
+bool Exchange::reachable_part(const Vec3& c, double h, double r, double& frac, Vec3& centroid) const {
+  const double pc = frame_->phi(c), hd = 0.5 * std::sqrt(3.0) * h;
+  if (pc >= r + hd) return frac = 1, centroid = c, true;
+  if (pc <= r - hd) return false;
+  const double dl = 1e-3 * h;
+  Vec3 grad;
+  for (int e = 0; e < 3; ++e) {
+    Vec3 dv{};
+    dv[e] = dl;
+    grad[e] = (frame_->phi(c + dv) - frame_->phi(c - dv)) / (2 * dl);
+  }
+  // the first axis within 1e-6 of the steepest: ties (a wall's edge or corner on the
+  // sub-cube's diagonal) do not depend on the round-off of a block's coordinates
+  const double gmax = std::max({std::fabs(grad[0]), std::fabs(grad[1]), std::fabs(grad[2])});
+  int a = 0;
+  while (std::fabs(grad[a]) < gmax - 1e-6) ++a;
+  if (!(std::fabs(grad[a]) > 1e-9)) {  // phi flat here (a ridge): the centre decides
+    if (pc < r) return false;
+    return frac = 1, centroid = c, true;
+  }
+  const int u = (a + 1) % 3, v = (a + 2) % 3;
+  double len = 0;
+  Vec3 moment{};
+  for (int q = 0; q < kCol; ++q)
+    for (int p = 0; p < kCol; ++p) {
+      const double yu = ((p + 0.5) / kCol - 0.5) * h, yv = ((q + 0.5) / kCol - 0.5) * h;
+      // pc + grad_a t + grad_u yu + grad_v yv >= r along the column, t in [-h/2, h/2]
+      const double t0 = (r - pc - grad[u] * yu - grad[v] * yv) / grad[a];
+      double lo = -0.5 * h, hi = 0.5 * h;
+      if (grad[a] > 0) lo = std::max(lo, t0); else hi = std::min(hi, t0);
+      if (!(hi > lo)) continue;
+      Vec3 x = c;
+      x[u] += yu, x[v] += yv, x[a] += 0.5 * (lo + hi);
+      len += hi - lo;
+      moment += (hi - lo) * x;
+    }
+  if (!(len > 0)) return false;
+  frac = len / (kCol * kCol * h);
+  centroid = (1.0 / len) * moment;
+  return true;
+}
+
+void Exchange::deposit_cell_capacity(int i, int j, int k, double r, bool plain, fluid::Field& cap) const {
+  static const std::array<double, 3> share = plain_shares();
+  if (plain) {  // the exact tabulated shares (no fold: plain cells lie away from the domain's ends)
+    const std::array<int, 3> n = g_.n();
+    for (int c = -1; c <= 1; ++c)
+      for (int b = -1; b <= 1; ++b)
+        for (int a = -1; a <= 1; ++a) {
+          std::array<int, 3> m{i + a, j + b, k + c};
+          for (int e = 0; e < 3; ++e)
+            if (periodic_[e]) m[e] = (m[e] % n[e] + n[e]) % n[e];
+          // node m receives from cell (i,j,k) at offset (cell - node) = -(a, b, c)
+          cap(m[0], m[1], m[2]) += share[1 - a] * share[1 - b] * share[1 - c];
+        }
+    return;
+  }
+  const double h = g_.dx / kSub, half_diag = 0.5 * std::sqrt(3.0) * g_.dx;
+  const Vec3 lo = g_.cell_centre(i, j, k) - 0.5 * g_.dx * Vec3{1, 1, 1};
+  const bool walls = frame_ && frame_->scene && !frame_->scene->empty();
+  const double pc = walls ? frame_->phi(g_.cell_centre(i, j, k)) : INFINITY;
+  if (pc <= r - half_diag) return;  // no centre can be anywhere in the cell
+  const bool all_in = pc >= r + half_diag;
+  for (int c = 0; c < kSub; ++c)
+    for (int b = 0; b < kSub; ++b)
+      for (int a = 0; a < kSub; ++a) {
+        const Vec3 s0 = lo + h * Vec3{double(a), double(b), double(c)};
+        double frac = 1;
+        Vec3 centroid = s0 + 0.5 * h * Vec3{1, 1, 1};
+        if (!all_in && !reachable_part(centroid, h, r, frac, centroid)) continue;
+        deposit(cell_weights(centroid, cell_layout_), frac / (kSub * kSub * kSub), cap);
+      }
+}
+
+void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
+  const std::array<int, 3> n = g_.n();
+  // Nodes that need it: holding solid, with a non-plain cell within the kernel's reach.
+  // A cell is plain when no wall lies within the kernel's reach of any point of it nor
+  // within r + (its half-diagonal) of its centre: no cell within `reach` of it holds wall
+  // (one cell more than that distance needs, for walls thinner than the wall fractions'
+  // sampling resolves), and it is not at a domain end.
+  const int reach = 1 + static_cast<int>(std::floor(r / g_.dx + 0.5 * std::sqrt(3.0) + 0.5));
+  const std::vector<unsigned char> near = near_walls(reach);
+  auto is_plain = [&](int i, int j, int k) { return plain_cell(i, j, k, near); };
+  auto wrap = [&](int e, int m) { return periodic_[e] ? (m % n[e] + n[e]) % n[e] : m; };
+  auto inside = [&](int e, int m) {
+    const int lo = cells_.ghost_side[2 * e] ? -1 : 0, hi = cells_.ghost_side[2 * e + 1] ? n[e] : n[e] - 1;
+    return periodic_[e] || (m >= lo && m <= hi);
+  };
+  fluid::Field need = fluid::make_cell_field(g_);  // 1: the node's capacity is evaluated
+  // Over the block's own nodes and, on cut sides, its ghost layer: the neighbour's cells
+  // that reach a node near the cut deposit there from the neighbour (sum_deposits).
+  std::array<int, 3> lo{}, hi{};
+  for (int e = 0; e < 3; ++e) lo[e] = cells_.ghost_side[2 * e] ? -1 : 0, hi[e] = cells_.ghost_side[2 * e + 1] ? n[e] : n[e] - 1;
+  bool any = false;
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        if (!(solid(i, j, k) > 0)) continue;
+        bool all_plain = true;
+        for (int c = -1; c <= 1 && all_plain; ++c)
+          for (int b = -1; b <= 1 && all_plain; ++b)
+            for (int a = -1; a <= 1 && all_plain; ++a) {
+              if (!inside(0, i + a) || !inside(1, j + b) || !inside(2, k + c)) continue;
+              all_plain = is_plain(wrap(0, i + a), wrap(1, j + b), wrap(2, k + c));
+            }
+        if (all_plain) continue;
+        need(i, j, k) = 1;
+        any = true;
+      }
+  cap.fill(1.0);
+  if (!(sync_ ? sync_->any(any) : any)) return;
+  // Every cell within the reach of an evaluated node deposits (in index order: serial,
+  // deterministic); the nodes' capacities are then complete.
+  fluid::Field raw = fluid::make_cell_field(g_);
+  fluid::Field dep = fluid::make_cell_field(g_);
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        if (need(i, j, k) != 1) continue;
+        for (int c = -1; c <= 1; ++c)
+          for (int b = -1; b <= 1; ++b)
+            for (int a = -1; a <= 1; ++a) {
+              const int x = wrap(0, i + a), y = wrap(1, j + b), z = wrap(2, k + c);
+              if (x < 0 || x >= n[0] || y < 0 || y >= n[1] || z < 0 || z >= n[2]) continue;  // own cells only
+              dep(x, y, z) = 1;
+            }
+      }
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        if (dep(i, j, k) == 1) deposit_cell_capacity(i, j, k, r, is_plain(i, j, k), raw);
+  if (sync_) sync_->sum_deposits(raw, fluid::kCells);
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        if (need(i, j, k) == 1) cap(i, j, k) = raw(i, j, k);
+}
+
+}  // namespace cgdem::coupling
