@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "app/checkpoint.hpp"
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
@@ -121,9 +120,9 @@ int main(int argc, char** argv) {
   if (openblas_set_num_threads) openblas_set_num_threads(1);
   const auto launched = cgdem::app::launched_as();
 #ifdef CGDEM_WITH_MPI
-  // `cgdem run` over MPI ranks: under a launcher with N > 1 processes, or to continue
-  // from a checkpoint that a run over ranks wrote (on any number of ranks, 1 included).
-  if (*run && (launched.size > 1 || (!restart.empty() && cgdem::app::is_portable_checkpoint(restart)))) {
+  // `cgdem run` over MPI ranks: under a launcher with N > 1 processes (a checkpoint restarts
+  // on any number of ranks, one process included, without the launcher).
+  if (*run && launched.size > 1) {
     if (threads > 0) omp_set_num_threads(threads);
     return cgdem::app::run_distributed_main(argc, argv, {case_file, sets, output, restart});
   }
