@@ -3,6 +3,7 @@
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
+//   cgdem keys [--output FILE] [--check CASE ...]     (the case keys' reference, app/case_keys.hpp)
 //   cgdem spectrum | converge | scale | compare ...   (the analysis commands, scaling/*_command.hpp)
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "app/case_keys.hpp"
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
@@ -108,6 +110,14 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bfluid->add_option("--stage-tolerance", f_args.stage_tolerance, "relative residual of the Heun stage-1 solve");
 
+  std::string keys_output;
+  std::vector<std::string> keys_check;
+  auto* keys = app.add_subcommand("keys", "the reference of every case key: name, type, unit, default, allowed "
+                                          "values, meaning (Markdown, as docs/case_keys.md)");
+  keys->add_option("--output", keys_output, "write it to this file instead of printing it");
+  keys->add_option("--check", keys_check, "case files: list their keys that the reference lacks (exit 1 if any)")
+      ->check(CLI::ExistingFile);
+
   cgdem::scaling::SpectrumCommand spectrum(app);
   cgdem::scaling::ConvergeCommand converge(app);
   cgdem::scaling::ScaleCommand scale(app);
@@ -142,6 +152,7 @@ int main(int argc, char** argv) {
       request.check = check_only;
       return cgdem::app::run_case_file(request);
     }
+    if (*keys) return cgdem::app::keys_command(keys_output, keys_check);
     if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
     if (*bpress) {
       parse_grid(grid, p_args);

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "app/air_case.hpp"
+#include "app/case_keys.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "app/flow_case.hpp"
@@ -131,13 +132,7 @@ int run_case_file(const RunRequest& r) {
 // run). Used by `cgdem converge --reuse`.
 std::string resolve_case_file(const RunRequest& r) {
   Config cfg = load(r);
-  if (is_flow_case(cfg)) {
-    read_flow_case(cfg);
-  } else {
-    DemCase c = read_dem_case(cfg);
-    read_air_case(cfg, c.dem);
-    read_diagnostics(cfg);
-  }
+  read_case(cfg);
   cfg.check_unused();
   return cfg.resolved_toml();
 }
