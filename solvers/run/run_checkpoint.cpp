@@ -53,6 +53,21 @@ uint64_t fnv1a(const std::string& bytes) {
   return h;
 }
 
+// The run's position field by field, laid out as the struct (and the portable format 1)
+// holds it, with its 4 padding bytes written as zeros: the same state gives the same bytes.
+void put_position(io::ArchiveWriter& w, const RunPosition& at) {
+  w.put(at.t), w.put(at.steps), w.put(at.removed), w.put(at.builds);
+  w.put(at.removed_damping), w.put(at.removed_friction), w.put(at.removed_walls), w.put(at.removed_fluid);
+  w.put(at.ranks), w.put(int32_t{0});
+  static_assert(sizeof(RunPosition) == 8 * 8 + 2 * sizeof(int32_t), "RunPosition's layout changed");
+}
+
+void get_position(io::ArchiveReader& r, RunPosition& at) {
+  r.get(at.t), r.get(at.steps), r.get(at.removed), r.get(at.builds);
+  r.get(at.removed_damping), r.get(at.removed_friction), r.get(at.removed_walls), r.get(at.removed_fluid);
+  r.get(at.ranks), r.get<int32_t>();
+}
+
 // Where a DEM state loaded whole stands (an exact state, restarted over ranks).
 RunPosition position_of(const DemSolver& dem) {
   RunPosition at;
@@ -92,7 +107,7 @@ void write_checkpoint(const std::string& path, const std::string& config, Partic
     w.put_string(kGitRevision), w.put_string(config);
     w.put<uint8_t>(air != nullptr);
     w.tag("run");
-    w.put(at);
+    put_position(w, at);
     w.put<uint8_t>(exact);
     if (exact)
       s.dem().save(w);
@@ -123,7 +138,7 @@ CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
   with_air_ = r_->get<uint8_t>() != 0;
   if (layout_ != kSingleProcess2) {
     r_->tag("run");
-    r_->get(position_);
+    get_position(*r_, position_);
   }
   exact_ = layout_ == kCurrent ? r_->get<uint8_t>() != 0 : layout_ == kSingleProcess2;
 }
