@@ -1,7 +1,5 @@
 #include "solvers/run/particle_stepper.hpp"
 
-#include <iterator>
-
 namespace cgdem::run {
 
 ParticleStepper::ParticleStepper(Domain& domain, std::unique_ptr<DemSolver> dem, std::optional<AirSpec> air)
@@ -112,15 +110,6 @@ RunPosition ParticleStepper::position() {
   comm().sum(v);
   h.removed_damping = v[0], h.removed_friction = v[1], h.removed_walls = v[2], h.removed_fluid = v[3];
   return h;
-}
-
-AirShare SerialDomain::share_air(const AirSpec& air) {
-  AirShare s;
-  s.grid = air.grid;
-  s.fluid = air.fluid;
-  s.exchange = air.exchange;
-  s.pressure_text = "pressure " + air.fluid.pressure.method;
-  return s;
 }
 
 }  // namespace cgdem::run

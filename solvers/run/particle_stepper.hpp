@@ -24,8 +24,8 @@
 namespace cgdem::run {
 
 // Where a checkpoint left the run: its position in time, and the totals over the ranks of
-// the parcels that had left the domain and of their energy accounts. Stored as it is
-// (plain data) in checkpoints.
+// the parcels that had left the domain and of their energy accounts (checkpoints hold it,
+// run_checkpoint.hpp).
 struct RunPosition {
   double t = 0;
   long steps = 0, removed = 0, builds = 0;
