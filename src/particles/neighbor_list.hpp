@@ -29,7 +29,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "contact/contact_law.hpp"
+#include "contact/history.hpp"
 #include "geometry/scene.hpp"
 #include "particles/particles.hpp"
 
