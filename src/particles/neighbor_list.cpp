@@ -68,24 +68,27 @@ int local_index(const std::vector<std::pair<int64_t, int>>& by_id, int64_t id) {
   return it != by_id.end() && it->first == id ? it->second : -1;
 }
 
-}  // namespace
 
-void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
-  const int np = static_cast<int>(p.size());
-  if (ghosts > p.size())
-    throw Error(fmt::format("neighbour list: {} ghosts among {} particles", ghosts, p.size()));
-  if (ghosts > 0 && periodic.any())
+// The build's steps (NeighborList::build below). Each says what it reads and writes;
+// none depends on the number of threads: a parallel loop writes per-particle results
+// only, and everything is in a fixed order (cells, then index).
+
+// Reads ghosts, periodic; throws when the ghosts cannot be handled.
+void check_ghosts(const NeighborList& nl, const Particles& p) {
+  if (nl.ghosts > p.size())
+    throw Error(fmt::format("neighbour list: {} ghosts among {} particles", nl.ghosts, p.size()));
+  if (nl.ghosts > 0 && nl.periodic.any())
     throw Error("neighbour list: ghost parcels on periodic axes are not supported (their periodic images would be "
                 "missing)");
-  // Owned particles 0..no-1, ghosts no..np-1 (no = np without ghosts: the serial path).
-  const int no = np - static_cast<int>(ghosts);
-  ++builds;
-  if (periodic.any())
-    for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
+}
 
-  // 1. Cell grid over the particles' bounding box (the period on periodic axes), cells at
-  //    least one interaction range wide. Ghosts are in the box: pairs with them are found
-  //    through the same grid.
+// Cell grid over the particles' bounding box (the period on periodic axes), cells at least
+// one interaction range (largest diameter plus skin) wide. Ghosts are in the box: pairs
+// with them are found through the same grid. Reads x, radius; writes nl.shift (the 27
+// image shifts). Throws when a periodic length holds fewer than three cells.
+CellGrid make_cell_grid(NeighborList& nl, const Particles& p) {
+  const int np = static_cast<int>(p.size());
+  const Periodicity& periodic = nl.periodic;
   CellGrid g;
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo;
   double rmax = 0;
@@ -95,7 +98,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
     rmax = std::max(rmax, p.radius[i]);
   }
   if (np == 0) lo = hi = Vec3{};
-  double range = 2 * rmax + skin;
+  double range = 2 * rmax + nl.skin;
   if (!(range > 0)) range = 1;
   for (int a = 0; a < 3; ++a) {
     if (periodic.axis[a]) {
@@ -115,180 +118,253 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   }
   for (int c = 0; c < 27; ++c) {
     const int s[3] = {c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1};
-    for (int a = 0; a < 3; ++a) shift[c][a] = periodic.axis[a] ? s[a] * (periodic.hi[a] - periodic.lo[a]) : 0.0;
+    for (int a = 0; a < 3; ++a) nl.shift[c][a] = periodic.axis[a] ? s[a] * (periodic.hi[a] - periodic.lo[a]) : 0.0;
   }
-  const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
+  return g;
+}
 
-  // 2. Counting sort of the owned particles by cell; order[new] = old. Ghosts keep their
-  //    places (order is the identity on them: the halo exchange fills them in the order it
-  //    appended them) and get a cell index of their own: ghost_in[ghost_start[c] ..
-  //    ghost_start[c+1]-1] are the ghosts in cell c.
+// The particles by cell: the owned ones 0..no-1 sorted (order[new] = old, cells in index
+// order, a cell's particles in index order), the ghosts no..np-1 in their places (order is
+// the identity on them: the halo exchange fills them in the order it appended them), with
+// a cell index of their own: ghost_in[ghost_start[c] .. ghost_start[c+1]-1] are the ghosts
+// in cell c. start[c] .. start[c+1]-1 are the owned particles of cell c after the sort.
+struct CellOrder {
+  std::vector<int> order, start, ghost_start, ghost_in;
+};
+
+// Reads x; writes the CellOrder and reorders p by it.
+CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
+  const int np = static_cast<int>(p.size());
+  const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
+  CellOrder s;
   std::vector<long> cell(np);
-  std::vector<int> start(ncell + 1, 0);
+  s.start.assign(ncell + 1, 0);
   for (int i = 0; i < no; ++i) {
     int c[3];
     g.coords(p.x[i], c);
-    ++start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+    ++s.start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
   }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<int> order(np), fill(start.begin(), start.end() - 1);
-  for (int i = 0; i < no; ++i) order[fill[cell[i]]++] = i;
-  for (int i = no; i < np; ++i) order[i] = i;
-  std::vector<int> ghost_start, ghost_in;
+  std::partial_sum(s.start.begin(), s.start.end(), s.start.begin());
+  s.order.resize(np);
+  std::vector<int> fill(s.start.begin(), s.start.end() - 1);
+  for (int i = 0; i < no; ++i) s.order[fill[cell[i]]++] = i;
+  for (int i = no; i < np; ++i) s.order[i] = i;
   if (no < np) {
-    ghost_start.assign(ncell + 1, 0);
+    s.ghost_start.assign(ncell + 1, 0);
     for (int i = no; i < np; ++i) {
       int c[3];
       g.coords(p.x[i], c);
-      ++ghost_start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+      ++s.ghost_start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
     }
-    std::partial_sum(ghost_start.begin(), ghost_start.end(), ghost_start.begin());
-    ghost_in.resize(np - no);
-    std::vector<int> gfill(ghost_start.begin(), ghost_start.end() - 1);
-    for (int i = no; i < np; ++i) ghost_in[gfill[cell[i]]++] = i;
+    std::partial_sum(s.ghost_start.begin(), s.ghost_start.end(), s.ghost_start.begin());
+    s.ghost_in.resize(np - no);
+    std::vector<int> gfill(s.ghost_start.begin(), s.ghost_start.end() - 1);
+    for (int i = no; i < np; ++i) s.ghost_in[gfill[cell[i]]++] = i;
   }
-  p.reorder(order);
+  p.reorder(s.order);
+  return s;
+}
 
-  // Old lists (in old indices), kept for the history carry-over.
-  std::vector<int> old_off, old_partner, old_woff, old_wpart;
-  std::vector<contact::History> old_xi, old_wxi;
-  old_off.swap(offset);
-  old_partner.swap(partner);
-  old_xi.swap(hist);
-  old_woff.swap(wall_offset);
-  old_wpart.swap(wall_part);
-  old_wxi.swap(wall_hist);
-  const bool have_old = old_off.size() == static_cast<size_t>(np) + 1;
+// The lists of the last build, in its (old) particle indices, for the history carry-over.
+struct OldLists {
+  std::vector<int> off, partner, woff, wpart;
+  std::vector<contact::History> hist, whist;
+  bool valid = false;  // the old lists cover the same particles
+};
 
-  // 3. Half pair lists: count, then fill; each owned particle scans the 27 cells in a
-  //    fixed order and keeps partners with a higher index, then the ghosts of those cells
-  //    (all above it). Ghosts own no entries.
-  auto for_neighbours = [&](int i, auto&& visit) {
+// Moves offset, partner, hist and the wall lists out of nl (they are rebuilt).
+OldLists take_lists(NeighborList& nl, int np) {
+  OldLists o;
+  o.off.swap(nl.offset);
+  o.partner.swap(nl.partner);
+  o.hist.swap(nl.hist);
+  o.woff.swap(nl.wall_offset);
+  o.wpart.swap(nl.wall_part);
+  o.whist.swap(nl.wall_hist);
+  o.valid = o.off.size() == static_cast<size_t>(np) + 1;
+  return o;
+}
+
+// The 27 cells around owned particle i in a fixed order: visit(j, image code) for every
+// partner j within reach (r_i + r_j + skin), owned partners of higher index first in cell
+// order, then the ghosts of each cell (all above i). Ghosts own no entries.
+struct PairSearch {
+  const Particles& p;
+  const CellGrid& g;
+  const CellOrder& cells;
+  const NeighborList& nl;
+  int no, np;
+
+  template <class Visit>
+  void neighbours(int i, Visit&& visit) const {
     const Vec3& x0 = p.x[i];
     int c[3];
     g.coords(x0, c);
     for (int dz = -1; dz <= 1; ++dz) {
       int cz = c[2] + dz, sz = 0;
-      if (cz < 0 || cz >= g.n[2]) {
-        if (!periodic.axis[2]) continue;
-        sz = cz < 0 ? -1 : 1;
-        cz -= sz * g.n[2];
-      }
+      if (!wrap(2, cz, sz)) continue;
       for (int dy = -1; dy <= 1; ++dy) {
         int cy = c[1] + dy, sy = 0;
-        if (cy < 0 || cy >= g.n[1]) {
-          if (!periodic.axis[1]) continue;
-          sy = cy < 0 ? -1 : 1;
-          cy -= sy * g.n[1];
-        }
+        if (!wrap(1, cy, sy)) continue;
         for (int dx = -1; dx <= 1; ++dx) {
           int cx = c[0] + dx, sx = 0;
-          if (cx < 0 || cx >= g.n[0]) {
-            if (!periodic.axis[0]) continue;
-            sx = cx < 0 ? -1 : 1;
-            cx -= sx * g.n[0];
-          }
+          if (!wrap(0, cx, sx)) continue;
           const int code = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
-          const long cc = g.index(cx, cy, cz);
-          for (int j = std::max(start[cc], i + 1); j < start[cc + 1]; ++j) {
-            const double reach = p.radius[i] + p.radius[j] + skin;
-            if (norm2(p.x[j] + shift[code] - x0) < reach * reach) visit(j, code);
-          }
-          if (no < np)
-            for (int k = ghost_start[cc]; k < ghost_start[cc + 1]; ++k) {
-              const int j = ghost_in[k];
-              const double reach = p.radius[i] + p.radius[j] + skin;
-              if (norm2(p.x[j] + shift[code] - x0) < reach * reach) visit(j, code);
-            }
+          cell(i, x0, g.index(cx, cy, cz), code, visit);
         }
       }
     }
-  };
-  offset.assign(np + 1, 0);
+  }
+
+ private:
+  // Cell coordinate c along axis a, wrapped on a periodic axis (s: the image, -1, 0, 1);
+  // false when it lies outside a non-periodic grid.
+  bool wrap(int a, int& c, int& s) const {
+    if (c >= 0 && c < g.n[a]) return true;
+    if (!nl.periodic.axis[a]) return false;
+    s = c < 0 ? -1 : 1;
+    c -= s * g.n[a];
+    return true;
+  }
+  template <class Visit>
+  void cell(int i, const Vec3& x0, long cc, int code, Visit& visit) const {
+    for (int j = std::max(cells.start[cc], i + 1); j < cells.start[cc + 1]; ++j) {
+      const double reach = p.radius[i] + p.radius[j] + nl.skin;
+      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+    }
+    if (no < np)
+      for (int k = cells.ghost_start[cc]; k < cells.ghost_start[cc + 1]; ++k) {
+        const int j = cells.ghost_in[k];
+        const double reach = p.radius[i] + p.radius[j] + nl.skin;
+        if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+      }
+  }
+};
+
+// Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
+// (each owner's partners in increasing index), image, and hist: the history of the same
+// pair in the old lists, by old indices, stored under the lower of the two and flipped
+// when the owner changed. Parallel over owners, each writing its own entries.
+void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& order, const OldLists& old) {
+  const int np = s.np, no = s.no;
+  nl.offset.assign(np + 1, 0);
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < no; ++i) {
     int count = 0;
-    for_neighbours(i, [&](int, int) { ++count; });
-    offset[i + 1] = count;
+    s.neighbours(i, [&](int, int) { ++count; });
+    nl.offset[i + 1] = count;
   }
-  std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  const int ne = offset[np];
-  partner.resize(ne);
-  image.resize(ne);
-  hist.assign(ne, contact::History{});
+  std::partial_sum(nl.offset.begin(), nl.offset.end(), nl.offset.begin());
+  const int ne = nl.offset[np];
+  nl.partner.resize(ne);
+  nl.image.resize(ne);
+  nl.hist.assign(ne, contact::History{});
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < no; ++i) {
     std::vector<std::pair<int, int>> found;
-    found.reserve(offset[i + 1] - offset[i]);
-    for_neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
+    found.reserve(nl.offset[i + 1] - nl.offset[i]);
+    s.neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
     std::sort(found.begin(), found.end());
-    for (int k = 0, e = offset[i]; e < offset[i + 1]; ++e, ++k) {
-      partner[e] = found[k].first;
-      image[e] = static_cast<uint8_t>(found[k].second);
-      if (!have_old) continue;
-      // History of the same pair: under the lower of the two old indices, in its frame.
+    for (int k = 0, e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
+      nl.partner[e] = found[k].first;
+      nl.image[e] = static_cast<uint8_t>(found[k].second);
+      if (!old.valid) continue;
       const int oi = order[i], oj = order[found[k].first];
       if (oi < oj) {
-        if (const auto* h = find_history(old_off, old_partner, old_xi, oi, oj)) hist[e] = *h;
+        if (const auto* h = find_history(old.off, old.partner, old.hist, oi, oj)) nl.hist[e] = *h;
       } else {
-        if (const auto* h = find_history(old_off, old_partner, old_xi, oj, oi)) hist[e] = h->flipped();
+        if (const auto* h = find_history(old.off, old.partner, old.hist, oj, oi)) nl.hist[e] = h->flipped();
       }
     }
   }
-  // Histories carried in from other ranks; an empty `incoming` costs nothing here.
-  std::vector<std::pair<int64_t, int>> by_id;
-  if (!incoming.empty()) by_id = index_by_id(p.id);
-  for (const CarriedPair& c : incoming.pairs) {
+}
+
+// Histories carried in from other ranks (nl.incoming.pairs): each attached to its pair by
+// particle id, flipped when the owner (the lower index) is id_b. Writes hist.
+void attach_incoming_pairs(NeighborList& nl, const std::vector<std::pair<int64_t, int>>& by_id) {
+  for (const CarriedPair& c : nl.incoming.pairs) {
     const int a = local_index(by_id, c.id_a), b = local_index(by_id, c.id_b);
     if (a < 0 || b < 0 || a == b) continue;
-    const int e = find_entry(offset, partner, std::min(a, b), std::max(a, b));
-    if (e >= 0) hist[e] = a < b ? c.h : c.h.flipped();  // the owner is the lower index
+    const int e = find_entry(nl.offset, nl.partner, std::min(a, b), std::max(a, b));
+    if (e >= 0) nl.hist[e] = a < b ? c.h : c.h.flipped();
   }
-  // Reverse index, entries in increasing order for each partner.
-  rev_offset.assign(np + 1, 0);
-  for (int e = 0; e < ne; ++e) ++rev_offset[partner[e] + 1];
-  std::partial_sum(rev_offset.begin(), rev_offset.end(), rev_offset.begin());
-  rev_entry.resize(ne);
-  {
-    std::vector<int> pos(rev_offset.begin(), rev_offset.end() - 1);
-    for (int e = 0; e < ne; ++e) rev_entry[pos[partner[e]]++] = e;
-  }
-  derive();
+}
 
-  // 4. Wall candidates: parts whose surface is within r + skin of the particle (owned
-  //    particles only: a ghost's wall contacts are its owner's).
+// Reads partner; writes rev_offset, rev_entry: for each partner its entries in increasing order.
+void build_reverse_index(NeighborList& nl, int np) {
+  const int ne = static_cast<int>(nl.partner.size());
+  nl.rev_offset.assign(np + 1, 0);
+  for (int e = 0; e < ne; ++e) ++nl.rev_offset[nl.partner[e] + 1];
+  std::partial_sum(nl.rev_offset.begin(), nl.rev_offset.end(), nl.rev_offset.begin());
+  nl.rev_entry.resize(ne);
+  std::vector<int> pos(nl.rev_offset.begin(), nl.rev_offset.end() - 1);
+  for (int e = 0; e < ne; ++e) nl.rev_entry[pos[nl.partner[e]]++] = e;
+}
+
+// Wall candidates of the owned particles (a ghost's wall contacts are its owner's): the
+// parts whose surface lies within r + skin, in part order. Reads x, radius, the wall
+// frame; writes wall_offset, wall_part, and wall_hist carried over from the old lists by
+// old index and part, then from nl.incoming.walls by id. Parallel over particles, each
+// writing its own candidates.
+void find_wall_candidates(NeighborList& nl, const Particles& p, const geometry::Scene::Frame& walls, int no,
+                          const std::vector<int>& order, const OldLists& old,
+                          const std::vector<std::pair<int64_t, int>>& by_id) {
+  const int np = static_cast<int>(p.size());
   const int nparts = static_cast<int>(walls.scene ? walls.scene->parts().size() : 0);
   std::vector<geometry::Aabb> part_box(nparts);
   for (int q = 0; q < nparts; ++q) part_box[q] = walls.part_bounds(q);
-  wall_offset.assign(np + 1, 0);
+  nl.wall_offset.assign(np + 1, 0);
   std::vector<std::vector<int>> cand(np);
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < no; ++i) {
-    const double reach = p.radius[i] + skin;
+    const double reach = p.radius[i] + nl.skin;
     for (int q = 0; q < nparts; ++q)
       if (part_box[q].distance(p.x[i]) < reach && walls.part_distance(q, p.x[i]) < reach) cand[i].push_back(q);
-    wall_offset[i + 1] = static_cast<int>(cand[i].size());
+    nl.wall_offset[i + 1] = static_cast<int>(cand[i].size());
   }
-  std::partial_sum(wall_offset.begin(), wall_offset.end(), wall_offset.begin());
-  wall_part.resize(wall_offset[np]);
-  wall_hist.assign(wall_offset[np], contact::History{});
+  std::partial_sum(nl.wall_offset.begin(), nl.wall_offset.end(), nl.wall_offset.begin());
+  nl.wall_part.resize(nl.wall_offset[np]);
+  nl.wall_hist.assign(nl.wall_offset[np], contact::History{});
   for (int i = 0; i < no; ++i) {
-    std::copy(cand[i].begin(), cand[i].end(), wall_part.begin() + wall_offset[i]);
-    if (!have_old) continue;
+    std::copy(cand[i].begin(), cand[i].end(), nl.wall_part.begin() + nl.wall_offset[i]);
+    if (!old.valid) continue;
     const int oi = order[i];
-    for (int k = old_woff[oi]; k < old_woff[oi + 1]; ++k)
-      for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e)
-        if (wall_part[e] == old_wpart[k]) wall_hist[e] = old_wxi[k];
+    for (int k = old.woff[oi]; k < old.woff[oi + 1]; ++k)
+      for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
+        if (nl.wall_part[e] == old.wpart[k]) nl.wall_hist[e] = old.whist[k];
   }
-  for (const CarriedWall& c : incoming.walls) {
+  for (const CarriedWall& c : nl.incoming.walls) {
     const int i = local_index(by_id, c.id);
     if (i < 0) continue;
-    for (int e = wall_offset[i]; e < wall_offset[i + 1]; ++e)
-      if (wall_part[e] == c.part) wall_hist[e] = c.h;
+    for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
+      if (nl.wall_part[e] == c.part) nl.wall_hist[e] = c.h;
   }
+}
+
+}  // namespace
+
+// The build, step by step (each step's contract is at its definition above). The order of
+// the particles, of the entries and of the histories depends on the positions only, not
+// on the number of threads.
+void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
+  check_ghosts(*this, p);
+  const int np = static_cast<int>(p.size());
+  const int no = np - static_cast<int>(ghosts);  // owned particles 0..no-1, ghosts no..np-1
+  ++builds;
+  if (periodic.any())
+    for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
+  const CellGrid grid = make_cell_grid(*this, p);
+  const CellOrder cells = sort_by_cell(p, grid, no);
+  const OldLists old = take_lists(*this, np);
+  find_pairs(*this, PairSearch{p, grid, cells, *this, no, np}, cells.order, old);
+  std::vector<std::pair<int64_t, int>> by_id;  // an empty `incoming` costs nothing
+  if (!incoming.empty()) by_id = index_by_id(p.id);
+  attach_incoming_pairs(*this, by_id);
+  build_reverse_index(*this, np);
+  derive();
+  find_wall_candidates(*this, p, walls, no, cells.order, old, by_id);
   incoming.pairs.clear();
   incoming.walls.clear();
-
   x_at_build = p.x;
   body_offset_at_build = walls.offset;
 }
