@@ -1,6 +1,6 @@
 // The contact-law registry: every law a case may choose with [contact] law = "NAME".
 //
-// A law is a policy class (linear_law.hpp is the example) with
+// A law is a policy class (linear_law.hpp, hertz_mindlin.hpp are the examples) with
 //   Material   what a case gives ([contact] keys), read by `read`
 //   Params     what the force function reads for one species pair or species-wall kind
 //              (small and trivially copyable: the force pass keeps one in registers)
@@ -20,7 +20,7 @@
 // and one row in kContactLaws below: its name, one line of documentation and its reader.
 // The force pass (solvers/dem/compute_forces.cpp), the energy budget, the tables, the
 // checkpoints and the config reader are instantiated for every row; nothing else changes
-// when a law is added.
+// when a law is added (docs/contact_laws.md).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -31,6 +31,7 @@
 #include <variant>
 #include <vector>
 
+#include "contact/hertz_mindlin.hpp"
 #include "contact/law_table.hpp"
 #include "contact/linear_law.hpp"
 
@@ -50,6 +51,10 @@ inline constexpr std::tuple kContactLaws{
                                 "linear spring-dashpot, Coulomb friction, tangential history, l^3 scaling (the "
                                 "paper's eqs. 6-7); keys stiffness, restitution, friction",
                                 &LinearSpringDashpot::read},
+    LawRow<HertzMindlin>{"hertz-mindlin",
+                         "Hertz normal, Mindlin no-slip tangential stiffness, restitution-calibrated dashpots, "
+                         "l^3 scaling; keys youngs_modulus, poisson_ratio, restitution, friction",
+                         &HertzMindlin::read},
 };
 
 namespace detail {
