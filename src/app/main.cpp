@@ -17,9 +17,11 @@
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
+#include "contact/laws.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "geometry/primitives.hpp"
 #include "scaling/compare_command.hpp"
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
@@ -75,6 +77,9 @@ int main(int argc, char** argv) {
   run->add_flag("--check", check_only,
                 "validate the whole configuration, build the scene and insert the parcels, then exit without "
                 "stepping or writing (exit 0: valid)");
+  run->footer(fmt::format("Contact laws ([contact] law, the first is the default):\n{}\nWall primitives "
+                          "([[walls.body.part]] type):\n{}",
+                          cgdem::contact::contact_law_help(), cgdem::geometry::wall_primitive_help()));
 
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
