@@ -34,6 +34,14 @@ ShapePtr read_sphere(const Section& s) {
   return make_sphere(s.vec3("centre"), s.number("radius", Range::open_closed(0, kMaxRadius)));
 }
 
+ShapePtr read_cone(const Section& s) {
+  Vec3 p0 = s.vec3("p0"), p1 = s.vec3("p1");
+  double r0 = s.number("radius0", Range::closed(0, kMaxRadius)), r1 = s.number("radius1", Range::closed(0, kMaxRadius));
+  if (!(norm(p1 - p0) > 0)) s.fail("p1", "must differ from p0");
+  if (!(r0 + r1 > 0)) s.fail("radius1", "radius0 and radius1 cannot both be 0");
+  return make_cone(p0, p1, r0, r1);
+}
+
 const PrimitiveRow kPrimitives[] = {
     {"box", "axis-aligned solid box; keys min, max", &read_box, "min = [0, 0, 0]\nmax = [1, 2, 3]"},
     {"halfspace", "the solid behind a plane; keys point, normal (pointing out of the solid)", &read_half_space,
@@ -41,6 +49,8 @@ const PrimitiveRow kPrimitives[] = {
     {"cylinder", "solid capped cylinder; keys p0, p1 (axis ends), radius", &read_cylinder,
      "p0 = [0, 0, 0]\np1 = [0, 0, 2]\nradius = 1.0"},
     {"sphere", "solid sphere; keys centre, radius", &read_sphere, "centre = [0, 0, 0]\nradius = 1.0"},
+    {"cone", "solid capped cone (frustum, e.g. a hopper); keys p0, p1 (axis ends), radius0, radius1 (one may be 0)",
+     &read_cone, "p0 = [0, 0, 0]\np1 = [0, 0, 2]\nradius0 = 1.0\nradius1 = 0.25"},
 };
 
 }  // namespace
