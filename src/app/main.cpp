@@ -92,6 +92,10 @@ int main(int argc, char** argv) {
                  "run the stripped reference of the same law instead of the engine (one thread; a bound)");
   bdem->add_flag("--accounts", dem_args.accounts, "with --stripped: keep the energy accounts as the engine does")
       ->needs(bdem->get_option("--stripped"));
+  bdem->add_option("--law", dem_args.law,
+                   fmt::format("contact law, with its default material: {} (default linear: the paper's Table 1)",
+                               fmt::join(cgdem::contact::contact_law_names(), ", ")))
+      ->check(CLI::IsMember(cgdem::contact::contact_law_names()));
   cgdem::bench::PressureBenchArgs p_args;
   std::string grid = "140x70x50";
   bool no_cholmod = false;

@@ -1,11 +1,13 @@
 // What the contact-law registry (laws.hpp) gives the rest of the program: names, help,
 // the [contact] reader, the tables of the chosen law.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
 #include "contact/laws.hpp"
 #include "core/config.hpp"
+#include "core/error.hpp"
 
 namespace cgdem::contact {
 
@@ -43,6 +45,19 @@ std::string contact_law_help() {
 
 std::string_view law_name(const ContactModel& model) { return name_at(model.index()); }
 std::string_view law_name(const ContactTables& tables) { return name_at(tables.index()); }
+
+ContactModel default_contact_model(std::string_view name) {
+  ContactModel m;
+  bool found = false;
+  std::apply(
+      [&]<class... Rows>(const Rows&... row) {
+        ((row.name == name ? (m = typename Rows::Law::Material{}, found = true) : false) || ...);
+      },
+      kContactLaws);
+  if (!found)
+    throw Error(fmt::format("unknown contact law \"{}\" (the laws: {})", name, fmt::join(contact_law_names(), ", ")));
+  return m;
+}
 
 ContactModel read_contact_model(const Section& s) {
   const std::vector<std::string> names = contact_law_names();

@@ -99,6 +99,8 @@ std::string_view law_name(const ContactTables& tables);
 std::vector<std::string> contact_law_names();
 // "NAME  doc" per law, one a line (for --help).
 std::string contact_law_help();
+// The default material (Material{}) of the law named `name`; throws Error naming the laws.
+ContactModel default_contact_model(std::string_view name);
 // Reads [contact]: law (default: the first row) and that law's keys.
 ContactModel read_contact_model(const Section& contact);
 // Shortest collision time over every species pair and wall (the time-step check).
