@@ -18,9 +18,11 @@
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
+#include "contact/laws.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "geometry/primitives.hpp"
 #include "scaling/compare_command.hpp"
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
@@ -76,6 +78,9 @@ int main(int argc, char** argv) {
   run->add_flag("--check", check_only,
                 "validate the whole configuration, build the scene and insert the parcels, then exit without "
                 "stepping or writing (exit 0: valid)");
+  run->footer(fmt::format("Contact laws ([contact] law, the first is the default):\n{}\nWall primitives "
+                          "([[walls.body.part]] type):\n{}",
+                          cgdem::contact::contact_law_help(), cgdem::geometry::wall_primitive_help()));
 
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
@@ -88,6 +93,10 @@ int main(int argc, char** argv) {
                  "run the stripped reference of the same law instead of the engine (one thread; a bound)");
   bdem->add_flag("--accounts", dem_args.accounts, "with --stripped: keep the energy accounts as the engine does")
       ->needs(bdem->get_option("--stripped"));
+  bdem->add_option("--law", dem_args.law,
+                   fmt::format("contact law, with its default material: {} (default linear: the paper's Table 1)",
+                               fmt::join(cgdem::contact::contact_law_names(), ", ")))
+      ->check(CLI::IsMember(cgdem::contact::contact_law_names()));
   cgdem::bench::PressureBenchArgs p_args;
   std::string grid = "140x70x50";
   bool no_cholmod = false;
