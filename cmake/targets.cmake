@@ -54,19 +54,26 @@ if(CGDEM_MPI)
     message(STATUS "cgdem: hypre not found: the distributed pressure solve has no 'pfmg' preconditioner")
   endif()
 endif()
+# The run driver (solvers/run): the sequence of a run, its communicator (the identity on
+# one process), what advances a case with parcels, and its checkpoints; over MPI ranks
+# (solvers/run_mpi) the communicator and the decomposition into blocks.
+cgdem_module(cgdem_run DIRS solvers/run DEPS cgdem_coupling cgdem_parallel)
+if(CGDEM_MPI)
+  cgdem_module(cgdem_run_mpi DIRS solvers/run_mpi DEPS cgdem_run cgdem_distributed)
+endif()
 
-# The command line: its case readers, run loop and diagnostics are a library (tested in
-# tests/app); the executable is main.cpp.
+# The command line: its case readers, the phases of its runs and their outputs and
+# diagnostics are a library (tested in tests/app); the executable is main.cpp.
 file(GLOB CGDEM_APP_SRCS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/app/*.cpp)
 list(REMOVE_ITEM CGDEM_APP_SRCS ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
 add_library(cgdem_app STATIC ${CGDEM_APP_SRCS})
-target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling)
+target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling cgdem_run)
 target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
 # `mpirun -np N cgdem run` (src/app/mpi): only in builds with MPI; a single-process run
 # never initialises MPI.
 if(CGDEM_MPI)
   target_sources(cgdem_app PRIVATE ${PROJECT_SOURCE_DIR}/src/app/mpi/run_distributed.cpp)
-  target_link_libraries(cgdem_app PUBLIC cgdem_parallel cgdem_distributed)
+  target_link_libraries(cgdem_app PUBLIC cgdem_run_mpi)
   target_compile_definitions(cgdem_app PUBLIC CGDEM_WITH_MPI)
 endif()
 # The analysis on top of runs (coarse-grain scaling, spectra, convergence studies).

@@ -16,7 +16,8 @@ The layers, lowest first (a file may include its own folder and any lower rank):
     6  solvers/*                    (everything that advances time; any solvers/ folder
                                     may include another, the graph between them must be
                                     acyclic)
-    7  src/app                      (case readers, run drivers, diagnostics of a run)
+    7  src/app                      (case readers, the phases and outputs of a run,
+                                    diagnostics of a run; the run driver is solvers/run)
     8  scaling, bench               (analysis commands and benchmarks; neither includes
                                     the other)
     9  src/app/main.cpp             (the command line: may include everything)

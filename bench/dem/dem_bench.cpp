@@ -44,6 +44,9 @@ int run_stripped(const DemSolver& dem, const std::vector<Plane>& planes, const D
 int run_dem_bench(const DemBenchArgs& args) {
   if (args.stripped && args.threads != 1)
     throw Error("bench dem: the stripped reference runs on one thread (drop --threads with --stripped)");
+  const contact::ContactModel m = contact::default_contact_model(args.law);
+  if (args.stripped && m.index() != 0)
+    throw Error("bench dem: the stripped reference is the linear law's (drop --law with --stripped)");
   omp_set_num_threads(args.threads);
   io::ParticleTable bed = io::read_particles_csv(args.bed);
   const double d = bed.d.at(0);
@@ -61,7 +64,6 @@ int run_dem_bench(const DemBenchArgs& args) {
     scene.add_part(box, names[k], geometry::make_half_space(planes[k].point, planes[k].normal));
 
   Species s{"bed", d, 1.0, 1500.0};
-  MaterialParams m{50.0, 0.9, 0.3, 0.9, 0.3};
   DemParams p;
   p.dt = 1e-6;
   p.gravity = {0, 0, -9.81};
@@ -80,8 +82,8 @@ int run_dem_bench(const DemBenchArgs& args) {
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double rate = static_cast<double>(bed.size()) * args.steps / wall;
   EnergyBudget e = dem.energy();
-  fmt::print("bench dem: {} particles of {:g} m, {} steps, {} thread(s), {:.3f} s\n", bed.size(), d, args.steps,
-             args.threads, wall);
+  fmt::print("bench dem: {} particles of {:g} m, {} steps, {} thread(s), {:.3f} s, contact law {}\n", bed.size(), d,
+             args.steps, args.threads, wall, dem.contact_law());
   fmt::print("neighbour entries {} ({:.1f} per particle), contacts {}, list builds {}, E_kin {:.4g} J\n",
              dem.pair_entries(), static_cast<double>(dem.pair_entries()) / bed.size(), dem.contact_count(),
              dem.neighbor_builds(), e.kinetic_translational + e.kinetic_rotational);

@@ -24,7 +24,7 @@ struct State {
 };
 
 // One contact's history: the tangential spring xi, and with the energy accounts the last
-// step's tangential force, normal velocity and ft . v_t (contact_law.hpp).
+// step's tangential force, normal velocity and ft . v_t (contact/linear_law.hpp).
 struct Hist {
   double xi[3], ft[3], vn, ftvt;
 };
@@ -33,8 +33,9 @@ struct Hist {
 // normal n (partner to this particle), the overlap, the relative velocity u of the contact
 // point and the history h (updated: cleared when `touching` is false), the force on this
 // particle f and n x F_t (m), zero out of contact. With the accounts, also the energy
-// dissipated by the normal dashpot and tangentially in this step (contact::force, and
-// contact::finish for a contact that has just ended), as the engine books it.
+// dissipated by the normal dashpot and tangentially in this step
+// (contact::LinearSpringDashpot::force, and ::finish for a contact that has just ended),
+// as the engine books it.
 struct Law {
   double k, eta, mu, inv_k, dt;
   template <bool kAccounts>
@@ -204,8 +205,9 @@ StrippedDem::StrippedDem(const DemSolver& from, std::vector<Plane> walls, bool a
   dt_ = from.params().dt;
   skin_ = nl.skin;
   g_ = from.params().gravity;
-  pair_ = from.contacts().pair(0, 0);
-  wall_ = from.contacts().wall(0);
+  const auto& table = from.contact_table<contact::LinearSpringDashpot>();  // throws for another law
+  pair_ = table.pair(0, 0);
+  wall_ = table.wall(0);
   radius_ = n_ > 0 ? p.radius[0] : 0;
   inv_mass_ = n_ > 0 ? p.inv_mass[0] : 1;
   inv_inertia_ = n_ > 0 ? p.inv_inertia[0] : 1;
@@ -227,7 +229,8 @@ StrippedDem::StrippedDem(const DemSolver& from, std::vector<Plane> walls, bool a
   owner_.resize(ne);
   for (int i = 0; i < n_; ++i)
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) owner_[e] = i;
-  auto take = [this](std::vector<double>(&to)[8], const contact::History& h) {
+  auto take = [this](std::vector<double>(&to)[8], const contact::History& record) {
+    const auto h = contact::LinearSpringDashpot::unpack(record);
     for (int a = 0; a < 3; ++a) to[a].push_back(h.xi[a]);
     if (!accounts_) return;
     for (int a = 0; a < 3; ++a) to[3 + a].push_back(h.ft[a]);

@@ -5,7 +5,7 @@
 //
 // Same physics as DemSolver on a bed of one species in a box of planar walls: velocity
 // Verlet, linear spring-dashpot normal force, tangential spring with history, rotation of
-// the history into the tangent plane, Coulomb limit (contact_law.hpp), gravity. Left out:
+// the history into the tangent plane, Coulomb limit (contact/linear_law.hpp), gravity. Left out:
 //   * the energy accounts (dissipated energy, wall work): the history is xi alone (3
 //     doubles per entry instead of 8), and no per-contact bookkeeping; optional (the
 //     `accounts` variant keeps the dissipated energies, as the engine books them);
@@ -34,7 +34,7 @@ class StrippedDem {
   // The state of `from` (stepped at least once: its lists are built), whose walls are the
   // given planes (the caller built its scene from the same list).
   // With `accounts`, it also keeps the engine's energy accounts (dissipated by the normal
-  // dashpots and tangentially, second-order bookkeeping of contact_law.hpp): the history
+  // dashpots and tangentially, second-order bookkeeping of contact/linear_law.hpp): the history
   // is then 8 doubles per entry, as in the engine, and each contact books its energy.
   StrippedDem(const DemSolver& from, std::vector<Plane> walls, bool accounts = false);
   // One step of velocity Verlet. Throws when a particle has moved more than half the

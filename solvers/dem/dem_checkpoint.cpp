@@ -2,8 +2,11 @@
 // restarted run repeats the uninterrupted one bit for bit. The neighbour lists are stored
 // as they are (not rebuilt on loading): a rebuild would re-sort the particles and change
 // the order of the force sums. Forces and torques of the last step are stored too (the
-// first half kick after a restart uses them).
+// first half kick after a restart uses them). The histories are the laws' records
+// (contact/history.hpp); the section tag names the law when it is not the default one.
 #include "solvers/dem/dem_solver.hpp"
+
+#include <fmt/format.h>
 
 namespace cgdem {
 
@@ -18,8 +21,12 @@ void particle_and_list_fields(Archive&& io, P& p, N& nl) {
 
 }  // namespace
 
+std::string DemSolver::checkpoint_tag() const {
+  return tables_.index() == 0 ? std::string("dem") : fmt::format("dem/{}", contact_law());
+}
+
 void DemSolver::save(io::ArchiveWriter& w) const {
-  w.tag("dem");
+  w.tag(checkpoint_tag());
   w.put(t_), w.put(steps_), w.put(removed_), w.put(forces_valid_);
   w.put(removed_damping_), w.put(removed_friction_), w.put(removed_walls_), w.put(removed_fluid_);
   w.put(nl_.builds), w.put(nl_.shift);
@@ -27,7 +34,13 @@ void DemSolver::save(io::ArchiveWriter& w) const {
 }
 
 void DemSolver::load(io::ArchiveReader& r) {
-  r.tag("dem");
+  const std::string tag = r.get_string(), want = fmt::format("@{}", checkpoint_tag());
+  if (tag != want) {
+    if (tag == "@dem" || tag.starts_with("@dem/"))
+      throw Error(fmt::format("checkpoint: written with contact law \"{}\", the case uses \"{}\"",
+                              tag == "@dem" ? contact::contact_law_names().front() : tag.substr(5), contact_law()));
+    throw Error("checkpoint: section 'dem' not found where expected");
+  }
   r.get(t_), r.get(steps_), r.get(removed_), r.get(forces_valid_);
   r.get(removed_damping_), r.get(removed_friction_), r.get(removed_walls_), r.get(removed_fluid_);
   r.get(nl_.builds), r.get(nl_.shift);

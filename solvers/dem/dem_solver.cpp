@@ -9,10 +9,10 @@
 
 namespace cgdem {
 
-DemSolver::DemSolver(std::vector<Species> species, const MaterialParams& material, const DemParams& params,
+DemSolver::DemSolver(std::vector<Species> species, const contact::ContactModel& material, const DemParams& params,
                      geometry::Scene scene)
     : species_(std::move(species)),
-      table_(species_, material),
+      tables_(contact::make_tables(species_, material)),
       params_(params),
       scene_(std::move(scene)) {
   if (params_.skin <= 0) {

@@ -10,15 +10,18 @@
 // over the half step, unconditionally stable for any drag relaxation time):
 //   v' = (v + h/m (F + c u_f)) / (1 + h c/m),  F = contacts + walls + m g + f_ext,
 // c = Particles::drag, u_f = Particles::u_fluid, held fixed by the coupling over a fluid step.
-// Contact forces follow contact_law.hpp with the pair parameters of ContactTable;
-// particle-wall contacts use each wall part's signed distance (eq. 16) and the wall's own
-// velocity in the relative velocity.
+// Contact forces follow the case's contact law (contact/laws.hpp: the linear law of the
+// paper by default) with the pair parameters of its LawTable; particle-wall contacts use
+// each wall part's signed distance (eq. 16) and the wall's own velocity in the relative
+// velocity.
 #pragma once
 #include <array>
 #include <string>
+#include <string_view>
+#include <variant>
 #include <vector>
 
-#include "contact/contact_table.hpp"
+#include "contact/laws.hpp"
 #include "io/archive.hpp"
 #include "core/timers.hpp"
 #include "geometry/scene.hpp"
@@ -79,7 +82,8 @@ struct DomainExchange {
 
 class DemSolver {
  public:
-  DemSolver(std::vector<Species> species, const MaterialParams& material, const DemParams& params,
+  // `material`: the contact law and its parameters (a MaterialParams is the linear law).
+  DemSolver(std::vector<Species> species, const contact::ContactModel& material, const DemParams& params,
             geometry::Scene scene);
 
   // Particles are added before the first step (or between steps; the lists are rebuilt).
@@ -87,7 +91,14 @@ class DemSolver {
   const Particles& particles() const { return p_; }
   const std::vector<Species>& species() const { return species_; }
   const geometry::Scene& scene() const { return scene_; }
-  const ContactTable& contacts() const { return table_; }
+  // The contact law's name (its registry row) and its parameter table (throws Error when
+  // the solver runs another law).
+  std::string_view contact_law() const { return contact::law_name(tables_); }
+  template <class Law>
+  const contact::LawTable<Law>& contact_table() const {
+    if (const auto* t = std::get_if<contact::LawTable<Law>>(&tables_)) return *t;
+    throw Error(std::string("DemSolver: the contact law is ").append(contact_law()).append(", not the one asked for"));
+  }
   const DemParams& params() const { return params_; }
 
   void set_time(double t) { t_ = t; }
@@ -141,16 +152,23 @@ class DemSolver {
   void resume(double t, long steps, long removed, const EnergyBudget& removed_accounts, Particles parcels,
               NeighborList::Incoming histories);
   // Smallest collision time over all species pairs and walls.
-  double min_collision_time() const { return table_.min_collision_time(); }
+  double min_collision_time() const {
+    return std::visit([](const auto& t) { return t.min_collision_time(); }, tables_);
+  }
 
  private:
   void kick(double half_dt);
   void compute_forces();
   void remove_escaped();
   void rebuild_lists();
+  template <class Law>
+  double elastic_energy(const contact::LawTable<Law>& table) const;
+  // The section tag of save(): "dem" for the default law (the format before the registry),
+  // "dem/NAME" for another, so that a checkpoint is not continued under another law.
+  std::string checkpoint_tag() const;
 
   std::vector<Species> species_;
-  ContactTable table_;
+  contact::ContactTables tables_;
   DemParams params_;
   geometry::Scene scene_;
   geometry::Scene::Frame frame_;

@@ -21,8 +21,6 @@ namespace {
 constexpr double kMaxDiameter = 1.0;       // m, d_original
 constexpr double kMaxRatio = 100.0;        // coarse-grain ratio l
 constexpr double kMaxDensity = 1e5;        // kg/m^3 (the densest solids are ~2.3e4)
-constexpr double kMaxStiffness = 1e10;     // N/m
-constexpr double kMaxFriction = 5.0;       // Coulomb coefficient
 constexpr double kMaxCoordinate = 1e3;     // m, |domain.min|, |domain.max|
 constexpr double kMaxGravity = 1e5;        // m/s^2 per component
 constexpr double kMaxTime = 1e6;           // s, |time.start|, |time.end|
@@ -71,13 +69,8 @@ DemCase read_dem_case(Config& cfg) {
                                   c.dem.skin, 10 * dmax));
   }
 
-  // [contact]
-  Section cs = root.section("contact");
-  c.material.stiffness = cs.number("stiffness", Range::open_closed(0, kMaxStiffness));
-  c.material.restitution = cs.number("restitution", Range::open_closed(0, 1));
-  c.material.friction = cs.number("friction", Range::closed(0, kMaxFriction));
-  c.material.wall_restitution = cs.number_or("wall_restitution", c.material.restitution, Range::open_closed(0, 1));
-  c.material.wall_friction = cs.number_or("wall_friction", c.material.friction, Range::closed(0, kMaxFriction));
+  // [contact]: law (the registry, contact/laws.hpp) and that law's keys
+  c.material = contact::read_contact_model(root.section("contact"));
 
   // [domain], [physics], [walls]
   Section ds = root.section("domain");
@@ -189,8 +182,7 @@ DemCase read_dem_case(Config& cfg) {
     ts.fail("dt", fmt::format("{:g} s makes {:.3g} steps from time.start to time.end, more than {:g}", c.dem.dt,
                               (c.t_end - c.t_start) / c.dem.dt, kMaxSteps));
   double steps_per_collision = ts.number_or("min_steps_per_collision", 10.0, Range::closed(2.0, 1e6));
-  ContactTable table(c.species, c.material);
-  double tc = table.min_collision_time();
+  const double tc = contact::min_collision_time(c.species, c.material);
   if (c.dem.dt > tc / steps_per_collision)
     ts.fail("dt", fmt::format("{:g} s is too large: the shortest collision time is {:.4g} s and needs at least "
                               "time.min_steps_per_collision = {:g} steps (dt <= {:.4g} s)",

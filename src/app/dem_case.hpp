@@ -28,7 +28,7 @@ struct OutputSpec {
 
 struct DemCase {
   std::vector<Species> species;
-  MaterialParams material;
+  contact::ContactModel material;  // the contact law and its parameters ([contact])
   DemParams dem;
   geometry::Scene scene;
   uint64_t seed = 1;

@@ -218,16 +218,7 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
     const PathFlux q = path_fluxes(*air, t);
     r.q_cavity = q.cavity, r.q_walls = q.walls, r.q_open = q.open;
   }
-  if (air && alpha_cell && !alpha_cell->empty() && fp) {  // empty before the first fluid step
-    const fluid::BubbleCensus b = fluid::find_bubbles(air->grid, air->eps, *alpha_cell, fp->bc, spec_.eps_bubble, 1,
-                                                           spec_.die.table_top);
-    r.bubbles = static_cast<double>(b.bubbles.size());
-    r.v_bubbles = b.total_volume();
-    r.v_sealed = b.sealed_volume;
-    r.v_bubbles_shoe = b.total_volume_above();
-    r.v_bubble_max = b.largest() ? b.largest()->volume : 0.0;
-    if (b.largest()) r.z_bubble = b.largest()->centroid.z, r.z_bubble_top = b.largest()->z_top;
-  }
+  if (air && alpha_cell && fp) count_bubbles(r, *air, *alpha_cell, *fp);
   r.impacts = static_cast<long>(impacts_.size());
   // Backward difference over the window, from the recorded history.
   r.transfer_rate = 0;
@@ -240,6 +231,19 @@ DiagnosticsRow DieDiagnostics::row(double t, const Particles& p, const fluid::Fl
   const std::vector<PressureSum> sums = air ? pressure_sums(*air, air->grid, *fp) : std::vector<PressureSum>{};
   r.pressure = mean_pressures(sums);
   return r;
+}
+
+void DieDiagnostics::count_bubbles(DiagnosticsRow& r, const fluid::FluidState& air, const fluid::Field& alpha_cell,
+                                   const fluid::FluidParams& fp) const {
+  if (alpha_cell.empty()) return;  // before the first fluid step
+  const fluid::BubbleCensus b =
+      fluid::find_bubbles(air.grid, air.eps, alpha_cell, fp.bc, spec_.eps_bubble, 1, spec_.die.table_top);
+  r.bubbles = static_cast<double>(b.bubbles.size());
+  r.v_bubbles = b.total_volume();
+  r.v_sealed = b.sealed_volume;
+  r.v_bubbles_shoe = b.total_volume_above();
+  r.v_bubble_max = b.largest() ? b.largest()->volume : 0.0;
+  if (b.largest()) r.z_bubble = b.largest()->centroid.z, r.z_bubble_top = b.largest()->z_top;
 }
 
 std::vector<DieDiagnostics::PressureSum> DieDiagnostics::pressure_sums(const fluid::FluidState& air, const fluid::MacGrid& whole,

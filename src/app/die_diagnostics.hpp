@@ -109,6 +109,11 @@ class DieDiagnostics {
   // alpha_cell (the cells' wall fractions) enables the bubble census.
   DiagnosticsRow row(double t, const Particles& p, const fluid::FluidState* air, const fluid::FluidParams* fp,
                      const fluid::Field* alpha_cell = nullptr) const;
+  // The bubble census of a row (bubbles, their volumes, the largest one's height, the
+  // sealed air) from the air of the whole grid and its cells' wall fractions; nothing when
+  // alpha_cell is empty (before the first fluid step).
+  void count_bubbles(DiagnosticsRow& r, const fluid::FluidState& air, const fluid::Field& alpha_cell,
+                     const fluid::FluidParams& fp) const;
   // The air paths' fluxes over the z-faces of `air` (the whole grid or one block: the sums
   // of the blocks add up, each face counted by the block that owns it, k < nz).
   PathFlux path_fluxes(const fluid::FluidState& air, double t) const;

@@ -29,10 +29,6 @@ const io::CsvColumns& energy_csv_columns() {
   return columns;
 }
 
-std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls) {
-  return energy_csv_row(dem.time(), e, static_cast<long>(dem.particles().size()), dem.removed(), inside_walls);
-}
-
 std::string energy_csv_row(double t, const EnergyBudget& e, long particles, long removed, long inside_walls) {
   return fmt::format("{:.9g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
                      "{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}",

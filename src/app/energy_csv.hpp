@@ -15,9 +15,8 @@ namespace cgdem::app {
 // t_s, E_kin_trans_J, ..., particles, removed, inside_walls.
 const io::CsvColumns& energy_csv_columns();
 
-// One row (no trailing newline). `e` must already carry work_fluid (DemSolver::fluid_work()).
-std::string energy_csv_row(const DemSolver& dem, const EnergyBudget& e, long inside_walls);
-// The same row from its values (a run over MPI ranks: totals over the ranks).
+// One row (no trailing newline) of the totals over the ranks (one process: its own).
+// `e` must already carry work_fluid (DemSolver::fluid_work()).
 std::string energy_csv_row(double t, const EnergyBudget& e, long particles, long removed, long inside_walls);
 
 }  // namespace cgdem::app

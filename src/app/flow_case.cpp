@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "core/error.hpp"
 #include "core/revision.hpp"
@@ -13,6 +14,7 @@
 #include "io/metrics.hpp"
 #include "solvers/fluid/fluid_solver.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
+#include "solvers/run/run_driver.hpp"
 
 namespace cgdem::app {
 
@@ -100,61 +102,94 @@ FlowCase read_flow_case(Config& cfg) {
   return c;
 }
 
-int run_flow_case(const FlowCase& c, const std::string& case_file, const std::string& resolved_config) {
-  namespace fs = std::filesystem;
-  fs::create_directories(c.output_dir);
-  const fs::path out(c.output_dir);
+namespace {
+
+// The flow case's phases of the run driver (solvers/run/run_driver.hpp): fixed steps to
+// flow.end, each checked (the pressure solve converged, the velocity finite and not
+// runaway), and the errors against the exact solution at the end.
+class FlowRun final : public run::Run {
+ public:
+  FlowRun(const FlowCase& c, const std::string& case_file, const std::string& resolved_config)
+      : c_(c), case_file_(case_file), config_(resolved_config), tg_{2 * M_PI / c.length, c.amplitude} {}
+
+  bool set_up() override;
+  void check_health() override;
+  void write_initial() override {}
+  bool finished() const override { return n_ >= c_.steps; }
+  void step() override {
+    ++n_;
+    const double t_next = n_ == c_.steps ? c_.t_end : n_ * c_.dt;
+    last_ = solver_->advance(s_, scene_.at(t_next), {}, t_next - s_.t);
+    s_.t = t_next;  // no drift of the clock over many steps
+  }
+  void observe() override { max_div_ = std::max(max_div_, last_.max_divergence); }
+  run::Due due() override { return {true, n_ == c_.steps}; }
+  void write_due() override {}
+  void progress(bool) override {}
+  int report() override;
+
+ private:
+  const FlowCase& c_;
+  std::string case_file_, config_;
+  TaylorGreen tg_;
+  Stopwatch clock_;
+  std::unique_ptr<fluid::FluidSolver> solver_;
+  fluid::FluidState s_;
+  geometry::Scene scene_;
+  fluid::StepStats last_;
+  long n_ = 0;
+  double max_div_ = 0;
+};
+
+bool FlowRun::set_up() {
+  const std::filesystem::path out(c_.output_dir);
+  std::filesystem::create_directories(out);
   io::write_file_atomic((out / "config.resolved.toml").string(),
-                        fmt::format("# cgdem {} resolved configuration of {}\n{}", kGitRevision, case_file,
-                                    resolved_config));
-  Stopwatch clock;
-  const double k = 2 * M_PI / c.length, nu = c.fluid.mu / c.fluid.rho;
-  const TaylorGreen tg{k, c.amplitude};
+                        fmt::format("# cgdem {} resolved configuration of {}\n{}", kGitRevision, case_file_, config_));
   fmt::print("cgdem {}: taylor-green, {} x {} cells of {:g} m, dt = {:g} s ({} steps to {:g} s), nu = {:g} m^2/s, "
              "time order {}, pressure {} (tol {:g})\n",
-             kGitRevision, c.n, c.n, c.grid.dx, c.dt, c.steps, c.t_end, nu, c.fluid.time_order,
-             c.fluid.pressure.method, c.fluid.pressure.rel_tol);
-
-  fluid::FluidSolver solver(c.grid, c.fluid);
-  fluid::FluidState s = fluid::make_fluid_state(c.grid);
+             kGitRevision, c_.n, c_.n, c_.grid.dx, c_.dt, c_.steps, c_.t_end, c_.fluid.mu / c_.fluid.rho,
+             c_.fluid.time_order, c_.fluid.pressure.method, c_.fluid.pressure.rel_tol);
+  solver_ = std::make_unique<fluid::FluidSolver>(c_.grid, c_.fluid);
+  s_ = fluid::make_fluid_state(c_.grid);
   for (int d = 0; d < 2; ++d) {
-    fluid::Field& f = s.vel(d);
+    fluid::Field& f = s_.vel(d);
     for (int kk = 0; kk < f.nk(); ++kk)
       for (int j = 0; j < f.nj(); ++j)
         for (int i = 0; i < f.ni(); ++i) {
-          const Vec3 x = c.grid.face_centre(d, i, j, kk);
-          f(i, j, kk) = d == 0 ? tg.u(x, 1.0) : tg.v(x, 1.0);
+          const Vec3 x = c_.grid.face_centre(d, i, j, kk);
+          f(i, j, kk) = d == 0 ? tg_.u(x, 1.0) : tg_.v(x, 1.0);
         }
   }
-  geometry::Scene scene;
-  double max_div = 0;
-  for (long n = 1; n <= c.steps; ++n) {
-    const double t_next = n == c.steps ? c.t_end : n * c.dt;
-    const fluid::StepStats st = solver.advance(s, scene.at(t_next), {}, t_next - s.t);
-    s.t = t_next;  // no drift of the clock over many steps
-    max_div = std::max(max_div, st.max_divergence);
-    if (!st.pressure_converged)
-      throw RunError(fmt::format("step {}, t = {:.6g} s: the pressure solve did not converge (relative residual {:.3g}, "
-                                 "flow.pressure.tolerance = {:g})",
-                                 n, s.t, st.pressure_residual, c.fluid.pressure.rel_tol));
-    if (!std::isfinite(st.cfl) || st.cfl > 10)
-      throw RunError(fmt::format("step {}, t = {:.6g} s: the velocity is non-finite or runaway (Courant number {:.3g})",
-                                 n, s.t, st.cfl));
-  }
+  return false;  // flow cases have no checkpoints
+}
 
-  // Errors against the exact solution at t = end.
-  const double F = std::exp(-2 * nu * k * k * c.t_end);
+void FlowRun::check_health() {
+  if (n_ == 0) return;  // the exact field
+  if (!last_.pressure_converged)
+    throw RunError(fmt::format("step {}, t = {:.6g} s: the pressure solve did not converge (relative residual {:.3g}, "
+                               "flow.pressure.tolerance = {:g})",
+                               n_, s_.t, last_.pressure_residual, c_.fluid.pressure.rel_tol));
+  if (!std::isfinite(last_.cfl) || last_.cfl > 10)
+    throw RunError(fmt::format("step {}, t = {:.6g} s: the velocity is non-finite or runaway (Courant number {:.3g})",
+                               n_, s_.t, last_.cfl));
+}
+
+// Errors against the exact solution at t = end, into metrics.csv.
+int FlowRun::report() {
+  const double nu = c_.fluid.mu / c_.fluid.rho;
+  const double F = std::exp(-2 * nu * tg_.k * tg_.k * c_.t_end);
   double e2 = 0, emax = 0, ke2 = 0, proj = 0, norm1 = 0;
-  for_each_face(s, [&](int d, const Vec3& x, double value) {
-    const double shape = d == 0 ? tg.u(x, 1.0) : tg.v(x, 1.0), e = value - shape * F;
+  for_each_face(s_, [&](int d, const Vec3& x, double value) {
+    const double shape = d == 0 ? tg_.u(x, 1.0) : tg_.v(x, 1.0), e = value - shape * F;
     e2 += e * e;
     emax = std::max(emax, std::fabs(e));
     ke2 += value * value;
     proj += value * shape;
     norm1 += shape * shape;
   });
-  const double faces = 2.0 * c.n * c.n, cells = static_cast<double>(c.n) * c.n;
-  const double ke = 0.5 * c.fluid.rho * ke2 / cells, ke_exact = c.fluid.rho * c.amplitude * c.amplitude * F * F / 4;
+  const double faces = 2.0 * c_.n * c_.n, cells = static_cast<double>(c_.n) * c_.n;
+  const double ke = 0.5 * c_.fluid.rho * ke2 / cells, ke_exact = c_.fluid.rho * c_.amplitude * c_.amplitude * F * F / 4;
   const double A = proj / norm1;  // shape carries U0 already: A is dimensionless
   const io::Metrics m{{"u_error_l2_m_s", std::sqrt(e2 / faces)},
                       {"u_error_max_m_s", emax},
@@ -162,18 +197,25 @@ int run_flow_case(const FlowCase& c, const std::string& case_file, const std::st
                       {"kinetic_energy_rel_error", (ke - ke_exact) / ke_exact},
                       {"decay_factor", A},
                       {"decay_factor_error", A - F},
-                      {"max_divergence_1_s", max_div},
-                      {"dx_m", c.grid.dx},
-                      {"dt_s", c.dt},
-                      {"steps", static_cast<double>(c.steps)},
-                      {"end_time_s", s.t},
-                      {"wall_time_s", clock.seconds()}};
-  io::write_metrics((out / "metrics.csv").string(), m);
+                      {"max_divergence_1_s", max_div_},
+                      {"dx_m", c_.grid.dx},
+                      {"dt_s", c_.dt},
+                      {"steps", static_cast<double>(c_.steps)},
+                      {"end_time_s", s_.t},
+                      {"wall_time_s", clock_.seconds()}};
+  io::write_metrics((std::filesystem::path(c_.output_dir) / "metrics.csv").string(), m);
   fmt::print("taylor-green at t = {:g} s: u error rms {:.4e} m/s, max {:.4e} m/s; KE {:.6e} J/m^3 (rel. error {:.3e}); "
              "decay factor {:.10f} (exact {:.10f}); max divergence {:.1e} 1/s; {:.2f} s\n",
-             s.t, std::sqrt(e2 / faces), emax, ke, (ke - ke_exact) / ke_exact, A, F, max_div, clock.seconds());
-  fmt::print("results in {}\n", c.output_dir);
+             s_.t, std::sqrt(e2 / faces), emax, ke, (ke - ke_exact) / ke_exact, A, F, max_div_, clock_.seconds());
+  fmt::print("results in {}\n", c_.output_dir);
   return 0;
+}
+
+}  // namespace
+
+int run_flow_case(const FlowCase& c, const std::string& case_file, const std::string& resolved_config) {
+  FlowRun r(c, case_file, resolved_config);
+  return run::drive(r);
 }
 
 }  // namespace cgdem::app

@@ -3,6 +3,7 @@
 //   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
+//   cgdem keys [--output FILE] [--check CASE ...]     (the case keys' reference, app/case_keys.hpp)
 //   cgdem spectrum | converge | scale | compare ...   (the analysis commands, scaling/*_command.hpp)
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -13,13 +14,15 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "app/checkpoint.hpp"
+#include "app/case_keys.hpp"
 #include "app/launcher.hpp"
 #include "app/run_command.hpp"
 #include "bench/bench.hpp"
+#include "contact/laws.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "geometry/primitives.hpp"
 #include "scaling/compare_command.hpp"
 #include "scaling/converge_command.hpp"
 #include "scaling/scale_command.hpp"
@@ -75,6 +78,9 @@ int main(int argc, char** argv) {
   run->add_flag("--check", check_only,
                 "validate the whole configuration, build the scene and insert the parcels, then exit without "
                 "stepping or writing (exit 0: valid)");
+  run->footer(fmt::format("Contact laws ([contact] law, the first is the default):\n{}\nWall primitives "
+                          "([[walls.body.part]] type):\n{}",
+                          cgdem::contact::contact_law_help(), cgdem::geometry::wall_primitive_help()));
 
   auto* bench = app.add_subcommand("bench", "performance benchmarks (print figures)");
   bench->require_subcommand(1);
@@ -87,6 +93,10 @@ int main(int argc, char** argv) {
                  "run the stripped reference of the same law instead of the engine (one thread; a bound)");
   bdem->add_flag("--accounts", dem_args.accounts, "with --stripped: keep the energy accounts as the engine does")
       ->needs(bdem->get_option("--stripped"));
+  bdem->add_option("--law", dem_args.law,
+                   fmt::format("contact law, with its default material: {} (default linear: the paper's Table 1)",
+                               fmt::join(cgdem::contact::contact_law_names(), ", ")))
+      ->check(CLI::IsMember(cgdem::contact::contact_law_names()));
   cgdem::bench::PressureBenchArgs p_args;
   std::string grid = "140x70x50";
   bool no_cholmod = false;
@@ -109,6 +119,14 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bfluid->add_option("--stage-tolerance", f_args.stage_tolerance, "relative residual of the Heun stage-1 solve");
 
+  std::string keys_output;
+  std::vector<std::string> keys_check;
+  auto* keys = app.add_subcommand("keys", "the reference of every case key: name, type, unit, default, allowed "
+                                          "values, meaning (Markdown, as docs/case_keys.md)");
+  keys->add_option("--output", keys_output, "write it to this file instead of printing it");
+  keys->add_option("--check", keys_check, "case files: list their keys that the reference lacks (exit 1 if any)")
+      ->check(CLI::ExistingFile);
+
   cgdem::scaling::SpectrumCommand spectrum(app);
   cgdem::scaling::ConvergeCommand converge(app);
   cgdem::scaling::ScaleCommand scale(app);
@@ -121,9 +139,9 @@ int main(int argc, char** argv) {
   if (openblas_set_num_threads) openblas_set_num_threads(1);
   const auto launched = cgdem::app::launched_as();
 #ifdef CGDEM_WITH_MPI
-  // `cgdem run` over MPI ranks: under a launcher with N > 1 processes, or to continue
-  // from a checkpoint that a run over ranks wrote (on any number of ranks, 1 included).
-  if (*run && (launched.size > 1 || (!restart.empty() && cgdem::app::is_portable_checkpoint(restart)))) {
+  // `cgdem run` over MPI ranks: under a launcher with N > 1 processes (a checkpoint restarts
+  // on any number of ranks, one process included, without the launcher).
+  if (*run && launched.size > 1) {
     if (threads > 0) omp_set_num_threads(threads);
     return cgdem::app::run_distributed_main(argc, argv, {case_file, sets, output, restart});
   }
@@ -143,6 +161,7 @@ int main(int argc, char** argv) {
       request.check = check_only;
       return cgdem::app::run_case_file(request);
     }
+    if (*keys) return cgdem::app::keys_command(keys_output, keys_check);
     if (*bdem) return cgdem::bench::run_dem_bench(dem_args);
     if (*bpress) {
       parse_grid(grid, p_args);

@@ -1,6 +1,5 @@
-// Health checks of a running case, shared by the single-process run (run_case.cpp) and
-// the run over MPI ranks (mpi/run_distributed.cpp), which applies them to each rank's own
-// parcels.
+// Health checks of a running case (particle_run.cpp): over MPI ranks each rank applies
+// them to its own parcels and air cells.
 #pragma once
 #include <cstddef>
 

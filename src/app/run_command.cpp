@@ -11,14 +11,16 @@
 #include <system_error>
 
 #include "app/air_case.hpp"
+#include "app/case_keys.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "app/flow_case.hpp"
-#include "app/run_case.hpp"
+#include "app/particle_run.hpp"
 #include "core/config.hpp"
 #include "core/error.hpp"
+#include "solvers/run/domain.hpp"
 #ifdef CGDEM_WITH_MPI
-#include "app/mpi/run_distributed.hpp"
+#include "solvers/run_mpi/mpi_domain.hpp"
 #endif
 
 namespace cgdem::app {
@@ -76,6 +78,8 @@ int run_case_file(const RunRequest& r) {
   Config cfg = load(r);
   if (is_flow_case(cfg)) {
     if (!r.restart.empty()) throw Error("--restart: flow cases ([flow]) have no checkpoints; run them afresh");
+    if (r.distributed)
+      throw ConfigError("flow cases ([flow]) run on one process: start them without an MPI launcher");
     FlowCase f = read_flow_case(cfg);
     cfg.check_unused();
     if (r.check) {
@@ -114,25 +118,21 @@ int run_case_file(const RunRequest& r) {
   const RunInfo info{r.case_file, cfg.resolved_toml(), r.restart};
   if (r.distributed) {
 #ifdef CGDEM_WITH_MPI
-    return run_case_distributed(MPI_COMM_WORLD, c, air, diag, info);
+    run::MpiDomain ranks(MPI_COMM_WORLD);
+    return run_particle_case(ranks, c, air, diag, info);
 #else
     throw Error("this build of cgdem has no MPI (configured with CGDEM_MPI=OFF or without OpenMPI)");
 #endif
   }
-  return run_case(c, air, diag, info);
+  run::SerialDomain one_process;
+  return run_particle_case(one_process, c, air, diag, info);
 }
 
 // The configuration run_case_file would write to config.resolved.toml (validated, nothing
 // run). Used by `cgdem converge --reuse`.
 std::string resolve_case_file(const RunRequest& r) {
   Config cfg = load(r);
-  if (is_flow_case(cfg)) {
-    read_flow_case(cfg);
-  } else {
-    DemCase c = read_dem_case(cfg);
-    read_air_case(cfg, c.dem);
-    read_diagnostics(cfg);
-  }
+  read_case(cfg);
   cfg.check_unused();
   return cfg.resolved_toml();
 }

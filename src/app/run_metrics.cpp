@@ -33,7 +33,7 @@ bool is_column(const std::string& name, const std::string& base) {
                           name[base.size()] == '_' && is_unit_suffix(name.substr(base.size() + 1)));
 }
 
-// Columns of a CSV written by run_case ('#' comment lines skipped, before or after the column line), by name.
+// Columns of a CSV written by a run ('#' comment lines skipped, before or after the column line), by name.
 struct Table {
   std::vector<std::string> names;
   std::vector<std::vector<double>> cols;
@@ -122,12 +122,6 @@ FillingWindow filling_window(const geometry::DieFillingParams& p) {
   // Open: the leading edge reaches the mouth; closed: the trailing edge passes its far end.
   return {time_of_displacement(m, p, p.mouth_x0 - lead),
           time_of_displacement(m, p, p.mouth_x0 + p.mouth_length - p.cavity_x0)};
-}
-
-io::Metrics run_metrics(const std::string& dir, const DemSolver& dem, bool with_diagnostics,
-                        std::optional<std::pair<double, double>> front_impact, const std::optional<DieRun>& run) {
-  return run_metrics(dir, dem.time(), static_cast<long>(dem.particles().size()), dem.energy(), dem.removed(),
-                     with_diagnostics, front_impact, run);
 }
 
 io::Metrics run_metrics(const std::string& dir, double t, long particles, const EnergyBudget& e, long removed,

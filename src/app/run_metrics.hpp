@@ -57,11 +57,9 @@ struct DieRun {
 io::Metrics die_metrics(const std::string& diagnostics_csv, std::optional<std::pair<double, double>> front_impact,
                         const std::optional<DieRun>& run = std::nullopt);
 
-// Reads DIR/diagnostics.csv (if `with_diagnostics`) and returns the metrics.
-io::Metrics run_metrics(const std::string& dir, const DemSolver& dem, bool with_diagnostics,
-                        std::optional<std::pair<double, double>> front_impact,
-                        const std::optional<DieRun>& run = std::nullopt);
-// The same from the totals (a run over MPI ranks: e = global energy, counts over the ranks).
+// Reads DIR/diagnostics.csv (if `with_diagnostics`) and returns the metrics, with those of
+// the run's end from its totals (over the ranks: e = the energy budget of every parcel,
+// the counts over the ranks).
 io::Metrics run_metrics(const std::string& dir, double t, long particles, const EnergyBudget& e, long removed,
                         bool with_diagnostics, std::optional<std::pair<double, double>> front_impact,
                         const std::optional<DieRun>& run = std::nullopt);

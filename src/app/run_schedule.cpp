@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/checkpoint.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "io/atomic_file.hpp"

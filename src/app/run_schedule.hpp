@@ -1,6 +1,5 @@
-// What the run loop of `cgdem run` writes when, shared by the single-process run
-// (run_case.cpp) and the run over MPI ranks (mpi/run_distributed.cpp), so that both write
-// their files at the same times and report progress alike.
+// What a run with parcels writes when (particle_run.cpp, on one process and over MPI
+// ranks alike), and how it reports progress.
 //
 // Output times are multiples of the intervals counted from t_start, also after a restart:
 // energy.csv every output.energy_interval (and with every snapshot), shoe_surface.csv every
@@ -24,7 +23,6 @@
 #include <string>
 #include <vector>
 
-#include "app/checkpoint.hpp"
 #include "app/dem_case.hpp"
 #include "app/die_diagnostics.hpp"
 #include "core/timers.hpp"
@@ -112,6 +110,13 @@ void print_front(const DieDiagnostics& diag, const DiagnosticsSpec& spec);
 // (alpha_cell may be empty: 0), the velocity averaged onto the cells.
 void write_air_snapshot(io::GridSnapshotSeries& series, long step, const fluid::FluidState& air,
                         const fluid::Field& alpha_cell);
+
+// The air's counters of a run (checkpointed with it, run_outputs.hpp).
+struct RunCounters {
+  long fluid_steps = 0, pressure_iterations = 0, unconverged = 0;
+  double max_divergence = 0;        // max |continuity residual| over cells with fluid [1/s]
+  double max_divergence_walls = 0;  // the same over cells entirely inside walls (not imposed)
+};
 
 // Books a coupled step into the counters; the first unconverged pressure solve is announced
 // on stderr (when `announce`: rank 0 of a run over ranks).

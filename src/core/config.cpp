@@ -381,6 +381,43 @@ void Section::fail(const std::string& key, const std::string& what) const {
   throw ConfigError(fmt::format("{}: key '{}': {}{}", cfg_->origin(key_path(key)), key_path(key), what, hint));
 }
 
+void KeyLog::note(KeyUse u) {
+  if (seen_.insert(u.path).second) uses_.push_back(std::move(u));
+}
+
+namespace {
+
+// A key path with the indices of arrays of tables written [] ("a.b[3].c" -> "a.b[].c").
+std::string generic_path(const std::string& path) {
+  static const std::regex index(R"(\[[0-9]+\])");
+  return std::regex_replace(path, index, "[]");
+}
+
+// What a Range allows, as the reference states it ("" for any finite number).
+std::string allowed_text(const Range& r) {
+  const std::string d = r.describe();
+  if (std::isinf(r.lo) && std::isinf(r.hi)) return "";
+  return d.substr(std::string("a number ").size());  // "> 0", "in (0, 1]"
+}
+
+std::string choices_text(const std::vector<std::string>& choices) {
+  std::vector<std::string> quoted;
+  for (const auto& c : choices) quoted.push_back("\"" + c + "\"");
+  return choices.empty() ? "" : "one of " + fmt::format("{}", fmt::join(quoted, ", "));
+}
+
+std::string numbers_text(const std::vector<double>& v) {
+  std::vector<std::string> parts;
+  for (double x : v) parts.push_back(fmt_num(x));
+  return "[" + fmt::format("{}", fmt::join(parts, ", ")) + "]";
+}
+
+}  // namespace
+
+void Section::note(const std::string& key, const char* type, const std::string& def, const std::string& allowed) const {
+  if (cfg_->key_log_) cfg_->key_log_->note({generic_path(key_path(key)), type, def, allowed});
+}
+
 bool Section::has(const std::string& key) const {
   Value* t = lookup(cfg_->doc_->root, path_, false);
   return t && t->is_table() && t->as_table().count(key);
@@ -421,12 +458,14 @@ static double as_number(const Section& s, const std::string& key, const Value& v
 }
 
 double Section::number(const std::string& key, Range r) const {
+  note(key, "number", "", allowed_text(r));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, fmt::format("missing (required: {})", r.describe()));
   return as_number(*this, key, *v, r);
 }
 
 double Section::number_or(const std::string& key, double def, Range r) const {
+  note(key, "number", fmt_num(def), allowed_text(r));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) {
     store_default(cfg_->doc_->root, *this, key, Value(def), cfg_->used_);
@@ -445,12 +484,14 @@ static long as_integer(const Section& s, const std::string& key, const Value& v,
 }
 
 long Section::integer(const std::string& key, Range r) const {
+  note(key, "integer", "", allowed_text(r));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, "missing (required: an integer)");
   return as_integer(*this, key, *v, r);
 }
 
 long Section::integer_or(const std::string& key, long def, Range r) const {
+  note(key, "integer", std::to_string(def), allowed_text(r));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) {
     store_default(cfg_->doc_->root, *this, key, Value(static_cast<toml::integer>(def)), cfg_->used_);
@@ -460,6 +501,7 @@ long Section::integer_or(const std::string& key, long def, Range r) const {
 }
 
 bool Section::boolean(const std::string& key) const {
+  note(key, "boolean", "", "");
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, "missing (required: true or false)");
   if (!v->is_boolean()) fail(key, fmt::format("expected true or false, got {} ({})", type_name(*v), show(*v)));
@@ -467,6 +509,7 @@ bool Section::boolean(const std::string& key) const {
 }
 
 bool Section::boolean_or(const std::string& key, bool def) const {
+  note(key, "boolean", def ? "true" : "false", "");
   if (!has(key)) {
     store_default(cfg_->doc_->root, *this, key, Value(def), cfg_->used_);
     return def;
@@ -484,6 +527,7 @@ static std::string as_choice(const Section& s, const std::string& key, const Val
 }
 
 std::string Section::string(const std::string& key, const std::vector<std::string>& choices) const {
+  note(key, "string", "", choices_text(choices));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, choices.empty() ? "missing (required: a string)"
                                     : fmt::format("missing (required: one of {})", fmt::join(choices, ", ")));
@@ -492,6 +536,7 @@ std::string Section::string(const std::string& key, const std::vector<std::strin
 
 std::string Section::string_or(const std::string& key, const std::string& def,
                                const std::vector<std::string>& choices) const {
+  note(key, "string", "\"" + def + "\"", choices_text(choices));
   if (!has(key)) {
     store_default(cfg_->doc_->root, *this, key, Value(def), cfg_->used_);
     return def;
@@ -516,12 +561,14 @@ static std::vector<double> as_numbers(const Section& s, const std::string& key, 
 }
 
 std::vector<double> Section::numbers(const std::string& key, Range r) const {
+  note(key, "array of numbers", "", allowed_text(r).empty() ? "" : "each " + allowed_text(r));
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, "missing (required: an array of numbers)");
   return as_numbers(*this, key, *v, r);
 }
 
 std::vector<double> Section::numbers_or(const std::string& key, std::vector<double> def, Range r) const {
+  note(key, "array of numbers", numbers_text(def), allowed_text(r).empty() ? "" : "each " + allowed_text(r));
   if (!has(key)) {
     Value::array_type a;
     for (double d : def) a.emplace_back(d);
@@ -532,12 +579,14 @@ std::vector<double> Section::numbers_or(const std::string& key, std::vector<doub
 }
 
 Vec3 Section::vec3(const std::string& key) const {
+  note(key, "[x, y, z]", "", "");
   auto v = numbers(key);
   if (v.size() != 3) fail(key, fmt::format("expected 3 numbers [x, y, z], got {}", v.size()));
   return {v[0], v[1], v[2]};
 }
 
 std::vector<Vec3> Section::vec3_list(const std::string& key) const {
+  note(key, "array of [x, y, z]", "", "");
   const Value* v = fetch(cfg_, cfg_->doc_->root, *this, key, cfg_->used_);
   if (!v) fail(key, "missing (required: an array of [x, y, z])");
   if (!v->is_array()) fail(key, fmt::format("expected an array of [x, y, z], got {}", type_name(*v)));
@@ -551,6 +600,7 @@ std::vector<Vec3> Section::vec3_list(const std::string& key) const {
 }
 
 Vec3 Section::vec3_or(const std::string& key, Vec3 def) const {
+  note(key, "[x, y, z]", numbers_text({def.x, def.y, def.z}), "");
   if (!has(key)) {
     numbers_or(key, {def.x, def.y, def.z});
     return def;

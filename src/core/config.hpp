@@ -38,6 +38,29 @@ struct Range {
 
 class Config;
 
+// One key as a reader asks for it: what `cgdem keys` (the generated key reference,
+// docs/case_keys.md) states about it. Taken from the accessor calls themselves, so that the
+// reference says what is validated.
+struct KeyUse {
+  std::string path;           // "particles.species[].density": array elements as []
+  std::string type;           // "number", "integer", "boolean", "string", "[x, y, z]", ...
+  std::string default_value;  // as written in TOML ("" for a required key)
+  std::string allowed;        // the range or the choices ("" for any value of the type)
+};
+
+// The keys asked of a Config (Config::log_keys), each once, in the order first asked: a
+// key read twice (an optional key read by its required form, a section read by two
+// readers) keeps its first use.
+class KeyLog {
+ public:
+  void note(KeyUse u);
+  const std::vector<KeyUse>& uses() const { return uses_; }
+
+ private:
+  std::vector<KeyUse> uses_;
+  std::set<std::string> seen_;
+};
+
 // A view on one table of the document (the root or a nested section).
 class Section {
  public:
@@ -75,6 +98,9 @@ class Section {
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
  private:
+  // Records the key's use in the Config's KeyLog, if it has one.
+  void note(const std::string& key, const char* type, const std::string& def, const std::string& allowed) const;
+
   Config* cfg_;
   std::string path_;
 };
@@ -108,6 +134,9 @@ class Config {
   std::string origin(const std::string& path) const;
   // The configuration with defaults filled in, as TOML text.
   std::string resolved_toml() const;
+  // Every key asked from now on is noted in `log` (null: none), which must outlive the
+  // reading.
+  void log_keys(KeyLog* log) { key_log_ = log; }
 
  private:
   friend class Section;
@@ -117,6 +146,7 @@ class Config {
   std::string filename_;
   std::set<std::string> used_;
   std::map<std::string, std::string> overrides_;  // key path -> the option that set it
+  KeyLog* key_log_ = nullptr;
 };
 
 }  // namespace cgdem

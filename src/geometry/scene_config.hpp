@@ -8,8 +8,8 @@
 //   times = [0.0, 0.01]            #   knots [s]
 //   velocities = [[0,0,0], [0.1,0,0]]
 //   [[walls.body.part]]            # the body's parts (each its own contact)
-//   type = "box" | "halfspace" | "cylinder" | "sphere"
-//   min/max | point/normal | p0/p1/radius | centre/radius
+//   type = "box"                   # a row of the wall-primitive registry (primitives.hpp),
+//   min = [...]                    #   with that primitive's keys
 //   inside_free = false            # true: the inside of the shape is the free region
 #pragma once
 #include "core/config.hpp"

@@ -5,7 +5,7 @@
 // combinations away from the surface). The paper's phi_SDF (eq. 15), positive in the
 // region particles and air may occupy, is s of the union of all wall solids.
 //
-//   primitives  HalfSpace, Box, Cylinder (capped), Sphere
+//   primitives  HalfSpace, Box, Cylinder (capped), Sphere, Cone (capped, cone.cpp)
 //   CSG         Union = min(a, b), Intersection = max(a, b), Difference = max(a, -b),
 //               Complement = -a (e.g. the inside of a closed container)
 //
@@ -50,6 +50,9 @@ ShapePtr make_box(const Vec3& lo, const Vec3& hi);
 // Solid capped cylinder with axis from p0 to p1.
 ShapePtr make_cylinder(const Vec3& p0, const Vec3& p1, double radius);
 ShapePtr make_sphere(const Vec3& centre, double radius);
+// Solid capped cone (frustum) with axis from p0 (radius r0) to p1 (radius r1); one radius
+// may be 0 (cone.cpp).
+ShapePtr make_cone(const Vec3& p0, const Vec3& p1, double r0, double r1);
 ShapePtr make_union(ShapePtr a, ShapePtr b);
 ShapePtr make_intersection(ShapePtr a, ShapePtr b);
 ShapePtr make_difference(ShapePtr a, ShapePtr b);  // a minus b

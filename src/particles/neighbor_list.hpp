@@ -29,7 +29,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "contact/contact_law.hpp"
+#include "contact/history.hpp"
 #include "geometry/scene.hpp"
 #include "particles/particles.hpp"
 
@@ -106,7 +106,8 @@ struct NeighborList {
     bool empty() const { return pairs.empty() && walls.empty(); }
   } incoming;
 
-  // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over.
+  // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over
+  // (neighbor_build.cpp, in named steps). The result does not depend on the thread count.
   void build(Particles& p, const geometry::Scene::Frame& walls);
   // Follows a change of the particle set made between builds (parcels sent to or received
   // from another rank): particle k < keep.size() is the old particle keep[k] (keep

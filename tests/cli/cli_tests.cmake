@@ -110,4 +110,18 @@ if(CGDEM_MPI)
   # Tolerances as for the bed in vacuum: 1e-8 early, 2e-2 at the end.
   cgdem_mpi_run_test(cli.mpirun_with_air_matches_one_process_and_restarts_on_other_rank_counts mpi_bed_air.toml
                      7e-3 16e-3)
+  # The other way round (tests/cli/mpi_restart.cmake): a checkpoint written by one process (its
+  # exact state) restarts on 2 ranks; against the uninterrupted single-process run, at the
+  # tolerances above (the same early times after the restart at 15 ms).
+  function(cgdem_mpi_restart_test name case t_early_restart)
+    add_test(NAME ${name}
+             COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DMPIEXEC=${MPIEXEC_EXECUTABLE}
+                     -DCOMPARE=$<TARGET_FILE:compare_runs> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/${case}
+                     -DT_HALF=15e-3 -DT_EARLY_RESTART=${t_early_restart} -DEARLY_TOL=1e-8 -DEND_TOL=2e-2
+                     -DMOMENTUM_SCALE=4e-6 -DWORK=${PROJECT_BINARY_DIR}/cli_out/${name}
+                     -P ${PROJECT_SOURCE_DIR}/tests/cli/mpi_restart.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli;parallel" TIMEOUT 300 ENVIRONMENT "OMP_NUM_THREADS=1")
+  endfunction()
+  cgdem_mpi_restart_test(cli.one_process_checkpoint_restarts_on_two_ranks mpi_bed.toml 17e-3)
+  cgdem_mpi_restart_test(cli.one_process_checkpoint_with_air_restarts_on_two_ranks mpi_bed_air.toml 16e-3)
 endif()

@@ -7,35 +7,16 @@
 // which makes the error's sign depend on the phase), not the bookkeeping.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "dem_test_util.hpp"
-#include "geometry/shape.hpp"
 
 namespace cgdem {
 namespace {
 
 double closure_error(double dt) {
-  geometry::Scene scene;
-  const int b = scene.add_body("box", geometry::Motion{});
-  scene.add_part(b, "floor", geometry::make_half_space({0, 0, 0}, {0, 0, 1}));
-  DemParams p;
-  p.dt = dt;
-  p.domain = {{-1, -1, -1}, {1, 1, 1}};
   MaterialParams m;
   m.restitution = m.wall_restitution = 0.7;
   m.friction = m.wall_friction = 0.3;
-  DemSolver dem({test::powder(2)}, m, p, scene);
-  for (int k = 0; k < 3; ++k)
-    dem.particles().add(k, 0, dem.species()[0], {0, 0.6e-4 * k, 0.4e-3 + 0.26e-3 * k}, {0.01 * k, 0, 0},
-                        {0, 0, 100.0 * k});
-  const EnergyBudget e0 = dem.energy();
-  double worst = 0;  // largest closure error seen, sampled every 0.1 ms
-  for (int k = 1; k <= 300; ++k) {
-    while (dem.time() < k * 1e-4 - 0.5 * dt) dem.step();
-    worst = std::max(worst, std::fabs(dem.energy().balance() - e0.balance()));
-  }
-  return worst / (e0.potential - dem.energy().potential);
+  return test::closure_error(dt, m);
 }
 
 TEST(Budget, ClosureErrorIsSmallAndShrinksWithDt) {

@@ -184,7 +184,7 @@ double rel(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
 // pair, both in the lower id's frame.
 bool same_values(const contact::History& a, const contact::History& b) {
   return a.xi.x == b.xi.x && a.xi.y == b.xi.y && a.xi.z == b.xi.z && a.ft.x == b.ft.x && a.ft.y == b.ft.y &&
-         a.ft.z == b.ft.z && a.vn == b.vn && a.ftvt == b.ftvt;
+         a.ft.z == b.ft.z && a.s1 == b.s1 && a.s2 == b.s2;
 }
 
 TEST(DistributedDem, MatchesTheSingleProcessRun) {

@@ -1,0 +1,200 @@
+#include "app/run_outputs.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "app/energy_csv.hpp"
+#include "app/run_checks.hpp"
+#include "app/run_metrics.hpp"
+#include "core/error.hpp"
+#include "core/revision.hpp"
+#include "particles/particle_io.hpp"
+#include "solvers/run/run_checkpoint.hpp"
+
+namespace cgdem::app {
+
+namespace {
+
+std::string in_folder(const std::string& dir, const std::string& name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+
+}  // namespace
+
+RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const DiagnosticsSpec& spec, DieDiagnostics& diag,
+                       const RunCounters& counters, const OutputContext& ctx)
+    : s_(s), c_(c), spec_(spec), diag_(diag), counters_(counters), ctx_(ctx) {
+  run::RunComm& comm = s_.comm();
+  const bool ranks = comm.size() > 1;
+  comment_ = "case " + ctx_.case_file + (ranks ? fmt::format(", {} MPI ranks", comm.size()) : "");
+  attrs_ = {{"cgdem_revision", kGitRevision}, {"config", ctx_.resolved_config}};
+  if (ranks) attrs_["mpi_ranks"] = std::to_string(comm.size());
+  const run::Totals t = s_.totals();
+  n_total_ = t.present + t.removed;
+  seen_removed_ = t.removed;
+  const double now = s_.dem().time();
+  const std::string& dir = c_.output.dir;
+  // Time series: on a restart the rows after the checkpoint's time are dropped and the file
+  // continues; otherwise it starts afresh.
+  auto open_csv = [&](const std::string& name, const io::CsvColumns& columns, std::vector<std::string> notes = {}) {
+    return open_series(dir, name, columns, comment_, ctx_.restart, now, notes);
+  };
+  comm.together("output files", true, [&] {
+    snapshots_ = std::make_unique<io::SnapshotSeries>(dir, "particles", attrs_, ctx_.restart, c_.output.compression);
+    if (s_.with_air())
+      air_snapshots_ =
+          std::make_unique<io::GridSnapshotSeries>(dir, "air", attrs_, ctx_.restart, c_.output.compression);
+    energy_ = open_csv("energy.csv", energy_csv_columns());
+    if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
+    if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
+  });
+}
+
+RunOutputs::~RunOutputs() = default;
+
+const Particles& RunOutputs::parcels(run::RunComm::Fields fields) {
+  using F = run::RunComm::Fields;
+  const DemSolver& dem = s_.dem();
+  if (gathered_ && gathered_step_ == dem.steps() && (gathered_fields_ == F::All || fields == F::Kinematics))
+    return *gathered_;
+  gathered_ = &s_.comm().gather(dem.particles(), dem.owned(), fields);
+  gathered_step_ = dem.steps(), gathered_fields_ = fields;
+  return *gathered_;
+}
+
+void RunOutputs::observe(double horizon) {
+  if (!spec_.enabled) return;
+  const DemSolver& dem = s_.dem();
+  const Particles& all = parcels(run::RunComm::Fields::Kinematics);
+  if (s_.comm().root()) diag_.observe(dem.time(), all, horizon);
+}
+
+void RunOutputs::energy() {
+  const DemSolver& dem = s_.dem();
+  const run::Totals t = s_.totals();
+  const long inside = s_.comm().sum(count_inside_walls(dem.scene(), dem.time(), dem.particles(), dem.owned()));
+  s_.comm().together("energy.csv", true, [&] {
+    account_parcels(t, inside);
+    energy_->row(energy_csv_row(dem.time(), t.energy, t.present, t.removed, inside));
+    energy_->flush();
+  });
+}
+
+// Parcels are never lost silently: the count (present + removed) must stay what it was,
+// and every new departure or tunnelling is announced when it is seen.
+void RunOutputs::account_parcels(const run::Totals& t, long inside) {
+  const double now = s_.dem().time();
+  const int ranks = s_.comm().size();
+  if (t.present + t.removed != n_total_)
+    throw RunError(fmt::format("t = {:.6g} s: {} parcels present + {} removed = {}{}, but the run has {} (a parcel "
+                               "was lost without being counted, or counted twice)",
+                               now, t.present, t.removed, t.present + t.removed,
+                               ranks > 1 ? fmt::format(" over {} ranks", ranks) : "", n_total_));
+  if (t.removed > seen_removed_)
+    fmt::print(stderr, "cgdem: warning: t = {:.6g} s: {} more parcel(s) left the domain ({} in all)\n", now,
+               t.removed - seen_removed_, t.removed);
+  if (inside > seen_inside_)
+    fmt::print(stderr, "cgdem: warning: t = {:.6g} s: {} parcel centre(s) inside a wall (tunnelled)\n", now, inside);
+  seen_removed_ = t.removed;
+  seen_inside_ = inside;
+}
+
+// The row of the state now: the parcels' part from the gathered parcels, the air's from
+// the sums of every rank's cells (pressure cells, paths out of the die). The bubble census
+// needs the whole grid: on one process only (NaN over ranks).
+DiagnosticsRow RunOutputs::diagnostics_now() {
+  const DemSolver& dem = s_.dem();
+  run::RunComm& comm = s_.comm();
+  const Particles& all = parcels(run::RunComm::Fields::Kinematics);
+  std::vector<DieDiagnostics::PressureSum> sums;
+  PathFlux paths;
+  if (s_.with_air()) {
+    const fluid::FluidParams& fp = s_.air_spec().fluid;
+    sums = diag_.pressure_sums(s_.air(), s_.air_spec().grid, fp);
+    paths = diag_.path_fluxes(s_.air(), dem.time());
+    std::vector<double> v;
+    for (const auto& q : sums) v.push_back(q.sum), v.push_back(double(q.cells));
+    v.push_back(paths.cavity), v.push_back(paths.walls), v.push_back(paths.open);
+    comm.sum(v);
+    for (size_t q = 0; q < sums.size(); ++q) sums[q].sum = v[2 * q], sums[q].cells = std::lround(v[2 * q + 1]);
+    paths = {v[2 * sums.size()], v[2 * sums.size() + 1], v[2 * sums.size() + 2]};
+  }
+  DiagnosticsRow row;
+  comm.together("diagnostics.csv", true, [&] {
+    row = diag_.row(dem.time(), all, nullptr, nullptr);
+    if (!s_.with_air()) return;
+    row.pressure = diag_.mean_pressures(sums);
+    row.q_cavity = paths.cavity, row.q_walls = paths.walls, row.q_open = paths.open;
+    if (comm.size() == 1) diag_.count_bubbles(row, s_.air(), s_.fluid().ibm().alpha_cell, s_.air_spec().fluid);
+  });
+  return row;
+}
+
+void RunOutputs::remember_step_start() { before_ = diagnostics_now(); }
+
+void RunOutputs::diagnostics(const std::vector<double>& passed, bool at_end) {
+  if (!spec_.enabled) return;
+  const DiagnosticsRow now = diagnostics_now();
+  s_.comm().together("diagnostics.csv", true, [&] {
+    for (double tk : passed) diag_csv_->row(diag_.csv_line(before_ ? interpolate_row(*before_, now, tk) : now));
+    if (at_end) diag_csv_->row(diag_.csv_line(now));
+    diag_csv_->flush();
+  });
+  before_.reset();
+}
+
+void RunOutputs::surface() {
+  if (!spec_.enabled) return;
+  const DemSolver& dem = s_.dem();
+  const Particles& all = parcels(run::RunComm::Fields::Kinematics);
+  s_.comm().together("shoe_surface.csv", true, [&] {
+    surface_csv_->rows(diag_.surface_rows(dem.time(), all));
+    surface_csv_->flush();
+  });
+}
+
+void RunOutputs::snapshot() {
+  const DemSolver& dem = s_.dem();
+  const Particles& all = parcels(run::RunComm::Fields::All);
+  const fluid::FluidState* air = s_.with_air() ? &s_.whole_air() : nullptr;
+  const fluid::Field* alpha = s_.with_air() ? &s_.whole_alpha() : nullptr;
+  s_.comm().together("snapshot", true, [&] {
+    const io::ParticleTable t = to_table(all);
+    snapshots_->write(dem.steps(), dem.time(), t);
+    if (air) write_air_snapshot(*air_snapshots_, dem.steps(), *air, *alpha);
+    // atomic: always a consistent state
+    io::write_particles_h5(in_folder(c_.output.dir, "last_good.h5"), t, attrs_, c_.output.compression,
+                           io::Instant{dem.time(), dem.steps()});
+  });
+}
+
+void RunOutputs::checkpoint(const std::string& path) {
+  run::write_checkpoint(path, ctx_.resolved_config, s_,
+                        [&](io::ArchiveWriter& w) { save_observers(w, diag_, counters_); });
+}
+
+void RunOutputs::finish(const run::Totals& totals) {
+  s_.comm().together("final outputs", true, [&] {
+    energy_.reset(), diag_csv_.reset(), surface_csv_.reset();
+    if (spec_.enabled) write_impacts(c_.output.dir, diag_, comment_);
+    io::write_metrics(in_folder(c_.output.dir, "metrics.csv"),
+                      run_metrics(c_.output.dir, s_.dem().time(), totals.present, totals.energy, totals.removed,
+                                  spec_.enabled, diag_.front_impact(), DieRun{spec_.die, s_.with_air()}));
+  });
+}
+
+void RunOutputs::save_observers(io::ArchiveWriter& w, const DieDiagnostics& diag, const RunCounters& counters) {
+  diag.save(w);
+  w.tag("counters");
+  w.put(counters);
+}
+
+void RunOutputs::load_observers(io::ArchiveReader& r, DieDiagnostics& diag, RunCounters& counters) {
+  diag.load(r);
+  r.tag("counters");
+  r.get(counters);
+}
+
+}  // namespace cgdem::app

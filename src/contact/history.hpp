@@ -1,0 +1,73 @@
+// What every contact law shares with the rest of the engine:
+//   * History: the record in which the neighbour lists keep a contact's state from one step
+//     to the next, and which the checkpoints, the portable state and the migration buffers
+//     write byte for byte. A law keeps its own history type and packs it into this record
+//     (its history serialization, see laws.hpp), so none of those formats knows the law;
+//   * OriginalPair: the l^3 original contacts a parcel contact stands for (docs/model.md,
+//     section 1), from which a law derives its per-pair parameters;
+//   * Work: the energy a contact dissipates in one step;
+//   * select() and cgdem_sqrt(): what a law's force function may use and still vectorize.
+#pragma once
+#include <bit>
+#include <cstdint>
+
+#include "core/vec3.hpp"
+
+// IEEE square root with vector variants (x86-64 vector function ABI, defined in
+// simd_sqrt.cpp): a loop calling it vectorizes, while std::sqrt does not without
+// -fno-math-errno. Same result as std::sqrt, lane by lane.
+extern "C" {
+#pragma omp declare simd notinbranch
+double cgdem_sqrt(double);
+}
+
+namespace cgdem::contact {
+
+// c ? a : b without a branch (a loop using it needs no if-conversion to vectorize).
+inline double select(bool c, double a, double b) {
+  const uint64_t m = -static_cast<uint64_t>(c);
+  return std::bit_cast<double>((std::bit_cast<uint64_t>(a) & m) | (std::bit_cast<uint64_t>(b) & ~m));
+}
+inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
+  return {select(c, a.x, b.x), select(c, a.y, b.y), select(c, a.z, b.z)};
+}
+
+// The stored history of one contact: eight doubles (one cache line, a group size the
+// vectorizer handles), trivially copyable and without padding. The slots have a fixed
+// frame rule, which is all that the lists, the migration and the portable state need to
+// know: `xi` and `ft` are vectors in the frame of the pair's owner and are negated when the
+// contact is seen from the partner's side (flipped()); `s1` and `s2` are scalars that do
+// not depend on the side. All zero: a contact without history (empty()), which is what a
+// law must leave when a contact ends. What the slots mean is the law's (its pack/unpack;
+// linear_law.hpp: xi spring, ft last tangential force, s1 last v_n, s2 last F_t . v_t).
+struct History {
+  Vec3 xi;
+  Vec3 ft;
+  double s1 = 0;
+  double s2 = 0;
+  bool empty() const {
+    return (xi.x == 0) & (xi.y == 0) & (xi.z == 0) & (ft.x == 0) & (ft.y == 0) & (ft.z == 0) & (s1 == 0) &
+           (s2 == 0);
+  }
+  // The same contact seen from the partner's side.
+  History flipped() const { return {-xi, -ft, s1, s2}; }
+};
+
+// Energy bookkeeping of one contact over one step.
+struct Work {
+  double damping_n = 0;  // energy dissipated by the normal dashpot [J]
+  double friction = 0;   // energy dissipated tangentially (dashpot and sliding) [J]
+};
+
+// The original contacts behind one parcel contact (paper eqs. 6-7): l3 simultaneous
+// contacts between ORIGINAL particles, of reduced mass m_eff and reduced radius r_eff
+// (particle-particle: m_O,i m_O,j / (m_O,i + m_O,j) and the same for the radii; against a
+// wall: m_O and r_O, the wall a flat of infinite mass).
+struct OriginalPair {
+  double l3 = 1;
+  double m_eff = 0;  // [kg]
+  double r_eff = 0;  // [m]
+  bool wall = false;
+};
+
+}  // namespace cgdem::contact

@@ -1,0 +1,363 @@
+// NeighborList::build (neighbor_list.hpp) and its steps: the cell grid, the sort of the
+// particles along it, the half pair lists with their histories carried over, the reverse
+// index and the wall candidates.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "particles/neighbor_list.hpp"
+
+namespace cgdem {
+
+namespace {
+
+struct CellGrid {
+  Vec3 lo;
+  double h[3] = {1, 1, 1};
+  int n[3] = {1, 1, 1};
+  void coords(const Vec3& x, int c[3]) const {
+    for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>((x[a] - lo[a]) / h[a]), 0, n[a] - 1);
+  }
+  long index(int cx, int cy, int cz) const { return cx + static_cast<long>(n[0]) * (cy + static_cast<long>(n[1]) * cz); }
+};
+
+constexpr int kNoImage = 13;  // image code (sx+1) + 3 (sy+1) + 9 (sz+1) with s = 0
+
+// The entry of pair (owner, other), owner < other, or -1: pair lists are sorted by partner.
+int find_entry(const std::vector<int>& off, const std::vector<int>& partner, int owner, int other) {
+  auto first = partner.begin() + off[owner], last = partner.begin() + off[owner + 1];
+  auto it = std::lower_bound(first, last, other);
+  return it == last || *it != other ? -1 : static_cast<int>(it - partner.begin());
+}
+
+// Entry of the old history, in old indices.
+const contact::History* find_history(const std::vector<int>& off, const std::vector<int>& partner,
+                                     const std::vector<contact::History>& xi,
+                         int owner, int other) {
+  const int e = find_entry(off, partner, owner, other);
+  return e < 0 ? nullptr : &xi[e];
+}
+
+// (id, local index) sorted by id, to find carried histories' particles; ids must be unique.
+std::vector<std::pair<int64_t, int>> index_by_id(const std::vector<int64_t>& id) {
+  std::vector<std::pair<int64_t, int>> by_id(id.size());
+  for (size_t i = 0; i < id.size(); ++i) by_id[i] = {id[i], static_cast<int>(i)};
+  std::sort(by_id.begin(), by_id.end());
+  for (size_t k = 1; k < by_id.size(); ++k)
+    if (by_id[k].first == by_id[k - 1].first)
+      throw Error(fmt::format("neighbour list: particle id {} is held twice (local indices {} and {}); ids must be "
+                              "unique to attach carried contact history",
+                              by_id[k].first, by_id[k - 1].second, by_id[k].second));
+  return by_id;
+}
+
+int local_index(const std::vector<std::pair<int64_t, int>>& by_id, int64_t id) {
+  auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<int64_t, int>{id, -1});
+  return it != by_id.end() && it->first == id ? it->second : -1;
+}
+
+
+// The build's steps (NeighborList::build below). Each says what it reads and writes;
+// none depends on the number of threads: a parallel loop writes per-particle results
+// only, and everything is in a fixed order (cells, then index).
+
+// Reads ghosts, periodic; throws when the ghosts cannot be handled.
+void check_ghosts(const NeighborList& nl, const Particles& p) {
+  if (nl.ghosts > p.size())
+    throw Error(fmt::format("neighbour list: {} ghosts among {} particles", nl.ghosts, p.size()));
+  if (nl.ghosts > 0 && nl.periodic.any())
+    throw Error("neighbour list: ghost parcels on periodic axes are not supported (their periodic images would be "
+                "missing)");
+}
+
+// Cell grid over the particles' bounding box (the period on periodic axes), cells at least
+// one interaction range (largest diameter plus skin) wide. Ghosts are in the box: pairs
+// with them are found through the same grid. Reads x, radius; writes nl.shift (the 27
+// image shifts). Throws when a periodic length holds fewer than three cells.
+CellGrid make_cell_grid(NeighborList& nl, const Particles& p) {
+  const int np = static_cast<int>(p.size());
+  const Periodicity& periodic = nl.periodic;
+  CellGrid g;
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo;
+  double rmax = 0;
+  for (int i = 0; i < np; ++i) {
+    lo = cmin(lo, p.x[i]);
+    hi = cmax(hi, p.x[i]);
+    rmax = std::max(rmax, p.radius[i]);
+  }
+  if (np == 0) lo = hi = Vec3{};
+  double range = 2 * rmax + nl.skin;
+  if (!(range > 0)) range = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (periodic.axis[a]) {
+      const double L = periodic.hi[a] - periodic.lo[a];
+      g.lo[a] = periodic.lo[a];
+      g.n[a] = static_cast<int>(L / range);
+      if (g.n[a] < 3)
+        throw RunError(fmt::format("periodic length {:.4g} m along axis {} is shorter than three interaction ranges "
+                                   "(3 x {:.4g} m: largest diameter plus skin)",
+                                   L, "xyz"[a], range));
+      g.h[a] = L / g.n[a];
+    } else {
+      g.lo[a] = lo[a];
+      g.h[a] = range;
+      g.n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / range) + 1);
+    }
+  }
+  for (int c = 0; c < 27; ++c) {
+    const int s[3] = {c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1};
+    for (int a = 0; a < 3; ++a) nl.shift[c][a] = periodic.axis[a] ? s[a] * (periodic.hi[a] - periodic.lo[a]) : 0.0;
+  }
+  return g;
+}
+
+// The particles by cell: the owned ones 0..no-1 sorted (order[new] = old, cells in index
+// order, a cell's particles in index order), the ghosts no..np-1 in their places (order is
+// the identity on them: the halo exchange fills them in the order it appended them), with
+// a cell index of their own: ghost_in[ghost_start[c] .. ghost_start[c+1]-1] are the ghosts
+// in cell c. start[c] .. start[c+1]-1 are the owned particles of cell c after the sort.
+struct CellOrder {
+  std::vector<int> order, start, ghost_start, ghost_in;
+};
+
+// Reads x; writes the CellOrder and reorders p by it.
+CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
+  const int np = static_cast<int>(p.size());
+  const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
+  CellOrder s;
+  std::vector<long> cell(np);
+  s.start.assign(ncell + 1, 0);
+  for (int i = 0; i < no; ++i) {
+    int c[3];
+    g.coords(p.x[i], c);
+    ++s.start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+  }
+  std::partial_sum(s.start.begin(), s.start.end(), s.start.begin());
+  s.order.resize(np);
+  std::vector<int> fill(s.start.begin(), s.start.end() - 1);
+  for (int i = 0; i < no; ++i) s.order[fill[cell[i]]++] = i;
+  for (int i = no; i < np; ++i) s.order[i] = i;
+  if (no < np) {
+    s.ghost_start.assign(ncell + 1, 0);
+    for (int i = no; i < np; ++i) {
+      int c[3];
+      g.coords(p.x[i], c);
+      ++s.ghost_start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+    }
+    std::partial_sum(s.ghost_start.begin(), s.ghost_start.end(), s.ghost_start.begin());
+    s.ghost_in.resize(np - no);
+    std::vector<int> gfill(s.ghost_start.begin(), s.ghost_start.end() - 1);
+    for (int i = no; i < np; ++i) s.ghost_in[gfill[cell[i]]++] = i;
+  }
+  p.reorder(s.order);
+  return s;
+}
+
+// The lists of the last build, in its (old) particle indices, for the history carry-over.
+struct OldLists {
+  std::vector<int> off, partner, woff, wpart;
+  std::vector<contact::History> hist, whist;
+  bool valid = false;  // the old lists cover the same particles
+};
+
+// Moves offset, partner, hist and the wall lists out of nl (they are rebuilt).
+OldLists take_lists(NeighborList& nl, int np) {
+  OldLists o;
+  o.off.swap(nl.offset);
+  o.partner.swap(nl.partner);
+  o.hist.swap(nl.hist);
+  o.woff.swap(nl.wall_offset);
+  o.wpart.swap(nl.wall_part);
+  o.whist.swap(nl.wall_hist);
+  o.valid = o.off.size() == static_cast<size_t>(np) + 1;
+  return o;
+}
+
+// The 27 cells around owned particle i in a fixed order: visit(j, image code) for every
+// partner j within reach (r_i + r_j + skin), owned partners of higher index first in cell
+// order, then the ghosts of each cell (all above i). Ghosts own no entries.
+struct PairSearch {
+  const Particles& p;
+  const CellGrid& g;
+  const CellOrder& cells;
+  const NeighborList& nl;
+  int no, np;
+
+  template <class Visit>
+  void neighbours(int i, Visit&& visit) const {
+    const Vec3& x0 = p.x[i];
+    int c[3];
+    g.coords(x0, c);
+    for (int dz = -1; dz <= 1; ++dz) {
+      int cz = c[2] + dz, sz = 0;
+      if (!wrap(2, cz, sz)) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        int cy = c[1] + dy, sy = 0;
+        if (!wrap(1, cy, sy)) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+          int cx = c[0] + dx, sx = 0;
+          if (!wrap(0, cx, sx)) continue;
+          const int code = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
+          cell(i, x0, g.index(cx, cy, cz), code, visit);
+        }
+      }
+    }
+  }
+
+ private:
+  // Cell coordinate c along axis a, wrapped on a periodic axis (s: the image, -1, 0, 1);
+  // false when it lies outside a non-periodic grid.
+  bool wrap(int a, int& c, int& s) const {
+    if (c >= 0 && c < g.n[a]) return true;
+    if (!nl.periodic.axis[a]) return false;
+    s = c < 0 ? -1 : 1;
+    c -= s * g.n[a];
+    return true;
+  }
+  template <class Visit>
+  void cell(int i, const Vec3& x0, long cc, int code, Visit& visit) const {
+    for (int j = std::max(cells.start[cc], i + 1); j < cells.start[cc + 1]; ++j) {
+      const double reach = p.radius[i] + p.radius[j] + nl.skin;
+      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+    }
+    if (no < np)
+      for (int k = cells.ghost_start[cc]; k < cells.ghost_start[cc + 1]; ++k) {
+        const int j = cells.ghost_in[k];
+        const double reach = p.radius[i] + p.radius[j] + nl.skin;
+        if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+      }
+  }
+};
+
+// Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
+// (each owner's partners in increasing index), image, and hist: the history of the same
+// pair in the old lists, by old indices, stored under the lower of the two and flipped
+// when the owner changed. Parallel over owners, each writing its own entries.
+void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& order, const OldLists& old) {
+  const int np = s.np, no = s.no;
+  nl.offset.assign(np + 1, 0);
+#pragma omp parallel for schedule(static) if (np >= 512)
+  for (int i = 0; i < no; ++i) {
+    int count = 0;
+    s.neighbours(i, [&](int, int) { ++count; });
+    nl.offset[i + 1] = count;
+  }
+  std::partial_sum(nl.offset.begin(), nl.offset.end(), nl.offset.begin());
+  const int ne = nl.offset[np];
+  nl.partner.resize(ne);
+  nl.image.resize(ne);
+  nl.hist.assign(ne, contact::History{});
+#pragma omp parallel for schedule(static) if (np >= 512)
+  for (int i = 0; i < no; ++i) {
+    std::vector<std::pair<int, int>> found;
+    found.reserve(nl.offset[i + 1] - nl.offset[i]);
+    s.neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
+    std::sort(found.begin(), found.end());
+    for (int k = 0, e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
+      nl.partner[e] = found[k].first;
+      nl.image[e] = static_cast<uint8_t>(found[k].second);
+      if (!old.valid) continue;
+      const int oi = order[i], oj = order[found[k].first];
+      if (oi < oj) {
+        if (const auto* h = find_history(old.off, old.partner, old.hist, oi, oj)) nl.hist[e] = *h;
+      } else {
+        if (const auto* h = find_history(old.off, old.partner, old.hist, oj, oi)) nl.hist[e] = h->flipped();
+      }
+    }
+  }
+}
+
+// Histories carried in from other ranks (nl.incoming.pairs): each attached to its pair by
+// particle id, flipped when the owner (the lower index) is id_b. Writes hist.
+void attach_incoming_pairs(NeighborList& nl, const std::vector<std::pair<int64_t, int>>& by_id) {
+  for (const CarriedPair& c : nl.incoming.pairs) {
+    const int a = local_index(by_id, c.id_a), b = local_index(by_id, c.id_b);
+    if (a < 0 || b < 0 || a == b) continue;
+    const int e = find_entry(nl.offset, nl.partner, std::min(a, b), std::max(a, b));
+    if (e >= 0) nl.hist[e] = a < b ? c.h : c.h.flipped();
+  }
+}
+
+// Reads partner; writes rev_offset, rev_entry: for each partner its entries in increasing order.
+void build_reverse_index(NeighborList& nl, int np) {
+  const int ne = static_cast<int>(nl.partner.size());
+  nl.rev_offset.assign(np + 1, 0);
+  for (int e = 0; e < ne; ++e) ++nl.rev_offset[nl.partner[e] + 1];
+  std::partial_sum(nl.rev_offset.begin(), nl.rev_offset.end(), nl.rev_offset.begin());
+  nl.rev_entry.resize(ne);
+  std::vector<int> pos(nl.rev_offset.begin(), nl.rev_offset.end() - 1);
+  for (int e = 0; e < ne; ++e) nl.rev_entry[pos[nl.partner[e]]++] = e;
+}
+
+// Wall candidates of the owned particles (a ghost's wall contacts are its owner's): the
+// parts whose surface lies within r + skin, in part order. Reads x, radius, the wall
+// frame; writes wall_offset, wall_part, and wall_hist carried over from the old lists by
+// old index and part, then from nl.incoming.walls by id. Parallel over particles, each
+// writing its own candidates.
+void find_wall_candidates(NeighborList& nl, const Particles& p, const geometry::Scene::Frame& walls, int no,
+                          const std::vector<int>& order, const OldLists& old,
+                          const std::vector<std::pair<int64_t, int>>& by_id) {
+  const int np = static_cast<int>(p.size());
+  const int nparts = static_cast<int>(walls.scene ? walls.scene->parts().size() : 0);
+  std::vector<geometry::Aabb> part_box(nparts);
+  for (int q = 0; q < nparts; ++q) part_box[q] = walls.part_bounds(q);
+  nl.wall_offset.assign(np + 1, 0);
+  std::vector<std::vector<int>> cand(np);
+#pragma omp parallel for schedule(static) if (np >= 512)
+  for (int i = 0; i < no; ++i) {
+    const double reach = p.radius[i] + nl.skin;
+    for (int q = 0; q < nparts; ++q)
+      if (part_box[q].distance(p.x[i]) < reach && walls.part_distance(q, p.x[i]) < reach) cand[i].push_back(q);
+    nl.wall_offset[i + 1] = static_cast<int>(cand[i].size());
+  }
+  std::partial_sum(nl.wall_offset.begin(), nl.wall_offset.end(), nl.wall_offset.begin());
+  nl.wall_part.resize(nl.wall_offset[np]);
+  nl.wall_hist.assign(nl.wall_offset[np], contact::History{});
+  for (int i = 0; i < no; ++i) {
+    std::copy(cand[i].begin(), cand[i].end(), nl.wall_part.begin() + nl.wall_offset[i]);
+    if (!old.valid) continue;
+    const int oi = order[i];
+    for (int k = old.woff[oi]; k < old.woff[oi + 1]; ++k)
+      for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
+        if (nl.wall_part[e] == old.wpart[k]) nl.wall_hist[e] = old.whist[k];
+  }
+  for (const CarriedWall& c : nl.incoming.walls) {
+    const int i = local_index(by_id, c.id);
+    if (i < 0) continue;
+    for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
+      if (nl.wall_part[e] == c.part) nl.wall_hist[e] = c.h;
+  }
+}
+
+}  // namespace
+
+// The build, step by step (each step's contract is at its definition above). The order of
+// the particles, of the entries and of the histories depends on the positions only, not
+// on the number of threads.
+void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
+  check_ghosts(*this, p);
+  const int np = static_cast<int>(p.size());
+  const int no = np - static_cast<int>(ghosts);  // owned particles 0..no-1, ghosts no..np-1
+  ++builds;
+  if (periodic.any())
+    for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
+  const CellGrid grid = make_cell_grid(*this, p);
+  const CellOrder cells = sort_by_cell(p, grid, no);
+  const OldLists old = take_lists(*this, np);
+  find_pairs(*this, PairSearch{p, grid, cells, *this, no, np}, cells.order, old);
+  std::vector<std::pair<int64_t, int>> by_id;  // an empty `incoming` costs nothing
+  if (!incoming.empty()) by_id = index_by_id(p.id);
+  attach_incoming_pairs(*this, by_id);
+  build_reverse_index(*this, np);
+  derive();
+  find_wall_candidates(*this, p, walls, no, cells.order, old, by_id);
+  incoming.pairs.clear();
+  incoming.walls.clear();
+  x_at_build = p.x;
+  body_offset_at_build = walls.offset;
+}
+
+}  // namespace cgdem
