@@ -81,7 +81,7 @@ def discharge_dir(out, l, b, tag=""):
     return os.path.join(out, f"l{l}_b{b * 1e3:.3f}mm{tag}")
 
 
-def run_all(cgdem, out, ratios):
+def run_all(cgdem, out, ratios, slots):
     os.makedirs(out, exist_ok=True)
     for l in ratios:
         case = case_of(l)
@@ -91,8 +91,7 @@ def run_all(cgdem, out, ratios):
         for tag, extra in fills:
             f = fill_dir(out, l, tag)
             run(cgdem, [case, "--set", "time.end=0.0", *slot_sets(0.0), *extra], f, f + ".log")
-            slots = SLOTS_MM if tag == "" else [HEIGHT_CHECK_MM]
-            for b_mm in slots:
+            for b_mm in (slots if tag == "" else [HEIGHT_CHECK_MM]):
                 b = b_mm * 1e-3
                 d = discharge_dir(out, l, b, tag)
                 run(cgdem, [case, "--restart", os.path.join(f, "settled.bin"), "--set", f"time.end={T_END}",
@@ -191,6 +190,10 @@ def analyse(out, ratios):
     df["beverloo_fit_W_per_L_kg_s_m"] = [
         fits[r.l]["s"] ** 1.5 * max(r.b_m + fits[r.l]["a"] / fits[r.l]["s"], 0) ** 1.5 if r.l in fits else np.nan
         for r in df.itertuples()]
+    ref_l = max(fits) if fits else None
+    df["law_of_l%s_fit_W_per_L_kg_s_m" % ref_l] = [
+        fits[ref_l]["C"] * r.rho_b_kg_m3 * math.sqrt(G) * max(r.b_m - fits[ref_l]["k"] * r.d_m, 0) ** 1.5
+        if ref_l else np.nan for r in df.itertuples()]
     df.to_csv(os.path.join(out, "beverloo_table.csv"), index=False, float_format="%.6g")
     pd.DataFrame([dict(l=l, **v) for l, v in fits.items()]).to_csv(os.path.join(out, "beverloo_fit.csv"),
                                                                     index=False, float_format="%.6g")
@@ -201,6 +204,11 @@ def analyse(out, ratios):
     for l, v in fits.items():
         print(f"l = {l}: C' = {v['C']:.3f} +- {v['C_err']:.3f}, k = {v['k']:.3f} +- {v['k_err']:.3f} "
               f"({v['n']} slots, rms relative misfit of W {v['rms_rel']:.3f})")
+    if ref_l:
+        for r in df[df.l != ref_l].itertuples():
+            law = getattr(r, "law_of_l%s_fit_W_per_L_kg_s_m" % ref_l)
+            print(f"l = {r.l}, b = {r.b_m * 1e3:.3f} mm (b/d = {r.b_over_d:.1f}): W/L {r.W_per_L_kg_s_m:.4g} against the "
+                  f"law of l = {ref_l}'s C', k with d = {r.d_m * 1e6:.0f} um: {law:.4g} ({r.W_per_L_kg_s_m / law - 1:+.3f})")
     # Fill height: the half fill against the full one at the same slot.
     for l in ratios:
         h = df[(df.l == l) & (df.fill == "half")]
@@ -255,6 +263,12 @@ def plot(out, df, fits, series):
             v = fits[l]
             ax[1].plot(bb * 1e3, np.maximum(v["a"] + v["s"] * bb, 0), color=colours.get(l),
                        label=f"fit: C' = {v['C']:.2f}+-{v['C_err']:.2f}, k = {v['k']:.2f}+-{v['k_err']:.2f}")
+        elif fits:
+            ref = fits[max(fits)]
+            rho_b, d = r.rho_b_kg_m3.iloc[0], r.d_m.iloc[0]
+            y = (ref["C"] * rho_b * math.sqrt(G)) ** (2 / 3) * np.maximum(bb - ref["k"] * d, 0)
+            ax[1].plot(bb * 1e3, y, ls="--", color=colours.get(l),
+                       label=f"law of l = {max(fits)}'s C', k with d = {d * 1e6:.0f} um")
     h = df[df.fill == "half"]
     ax[1].plot(h.b_m * 1e3, h.W_per_L_kg_s_m ** (2 / 3), "kx", label="half fill")
     ax[1].set(xlabel="slot width b [mm]", ylabel="(W/L)^(2/3) [(kg/s/m)^(2/3)]",
@@ -271,11 +285,12 @@ def main():
     p.add_argument("--cgdem", default="build/cgdem")
     p.add_argument("--out", default="out/beverloo")
     p.add_argument("--ratios", default="3,2")
+    p.add_argument("--slots", default=",".join(str(x) for x in SLOTS_MM), help="slot widths b [mm] to run")
     p.add_argument("--analyse-only", action="store_true")
     a = p.parse_args()
     ratios = [int(x) for x in a.ratios.split(",")]
     if not a.analyse_only:
-        run_all(a.cgdem, a.out, ratios)
+        run_all(a.cgdem, a.out, ratios, [float(x) for x in a.slots.split(",")])
     analyse(a.out, ratios)
 
 
