@@ -8,7 +8,7 @@ discharges through the b = 2.25 mm (6 d) slot until t = 0.05 s. Its rate over th
 bulk density, within `tolerance_rate`; and the rate must be steady: the last and first
 halves of the window within `tolerance_drift` of each other. Prints both errors.
 
-Usage: check_quick.py CGDEM WORKDIR
+Usage: check_quick.py CGDEM WORKDIR [CGDEM RUN ARGUMENTS...]   (e.g. --set particles.seed=18, to both runs)
 """
 import math
 import os
@@ -30,7 +30,7 @@ def main():
     case = sweep.case_of(3)
     common = ["--set", f"particles.insert[0].solid_volume={q['solid_volume']}",
               "--set", f"particles.insert[0].max=[12e-3,1.5e-3,{q['insert_top']}]",
-              "--set", f"time.start={q['t_start']}", "--set", "output.snapshot_interval=1.0"]
+              "--set", f"time.start={q['t_start']}", "--set", "output.snapshot_interval=1.0", *sys.argv[3:]]
     fill, dis = os.path.join(work, "fill"), os.path.join(work, "discharge")
     sweep.run(cgdem, [case, "--set", "time.end=0.0", *sweep.slot_sets(0.0), *common], fill, fill + ".log")
     b = q["b"]

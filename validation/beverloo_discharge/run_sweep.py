@@ -187,6 +187,16 @@ def analyse(out, ratios):
             fits[l] = fit(rows)
     if df.empty:
         sys.exit(f"no finished runs in {out}")
+    # The same fit on the b/d range every fitted ratio covers (the form is not exact over
+    # b/d = 3..15: C' and k grow with the range's b/d).
+    common = {}
+    if len(fits) > 1:
+        lo = max(min(r["b_over_d"] for r in table if r["l"] == l) for l in fits) - 1e-9
+        hi = min(max(r["b_over_d"] for r in table if r["l"] == l) for l in fits) + 1e-9
+        for l in fits:
+            rows = [r for r in table if r["l"] == l and r["fill"] == "full" and lo <= r["b_over_d"] <= hi]
+            if len(rows) >= 3:
+                common[l] = dict(fit(rows), b_over_d_min=lo, b_over_d_max=hi)
     df["beverloo_fit_W_per_L_kg_s_m"] = [
         fits[r.l]["s"] ** 1.5 * max(r.b_m + fits[r.l]["a"] / fits[r.l]["s"], 0) ** 1.5 if r.l in fits else np.nan
         for r in df.itertuples()]
@@ -195,7 +205,8 @@ def analyse(out, ratios):
         fits[ref_l]["C"] * r.rho_b_kg_m3 * math.sqrt(G) * max(r.b_m - fits[ref_l]["k"] * r.d_m, 0) ** 1.5
         if ref_l else np.nan for r in df.itertuples()]
     df.to_csv(os.path.join(out, "beverloo_table.csv"), index=False, float_format="%.6g")
-    pd.DataFrame([dict(l=l, **v) for l, v in fits.items()]).to_csv(os.path.join(out, "beverloo_fit.csv"),
+    pd.DataFrame([dict(l=l, slots="all", **v) for l, v in fits.items()] +
+                 [dict(l=l, slots="common b/d", **v) for l, v in common.items()]).to_csv(os.path.join(out, "beverloo_fit.csv"),
                                                                     index=False, float_format="%.6g")
     pd.set_option("display.width", 200)
     print(df[["l", "fill", "b_m", "b_over_d", "W_per_L_kg_s_m", "W_per_L_err_kg_s_m", "drift",
@@ -204,6 +215,9 @@ def analyse(out, ratios):
     for l, v in fits.items():
         print(f"l = {l}: C' = {v['C']:.3f} +- {v['C_err']:.3f}, k = {v['k']:.3f} +- {v['k_err']:.3f} "
               f"({v['n']} slots, rms relative misfit of W {v['rms_rel']:.3f})")
+    for l, v in common.items():
+        print(f"l = {l}, b/d in [{v['b_over_d_min']:.1f}, {v['b_over_d_max']:.1f}]: C' = {v['C']:.3f} +- {v['C_err']:.3f}, "
+              f"k = {v['k']:.3f} +- {v['k_err']:.3f} ({v['n']} slots, rms relative misfit of W {v['rms_rel']:.3f})")
     if ref_l:
         for r in df[df.l != ref_l].itertuples():
             law = getattr(r, "law_of_l%s_fit_W_per_L_kg_s_m" % ref_l)
@@ -242,7 +256,7 @@ def plot(out, df, fits, series):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ax = plt.subplots(1, 3, figsize=(16, 4.4))
     colours = {3: "C0", 2: "C1", 1: "C2"}
     for (l, b_mm, tag), (t, M) in series.items():
         if l == max(fits or [3]) or tag:
@@ -271,6 +285,22 @@ def plot(out, df, fits, series):
                        label=f"law of l = {max(fits)}'s C', k with d = {d * 1e6:.0f} um")
     h = df[df.fill == "half"]
     ax[1].plot(h.b_m * 1e3, h.W_per_L_kg_s_m ** (2 / 3), "kx", label="half fill")
+    for l in sorted(set(df.l)):
+        r = df[(df.l == l) & (df.fill == "full")]
+        scale = r.rho_b_kg_m3 * math.sqrt(G) * r.d_m ** 1.5
+        ax[2].errorbar(r.b_over_d, (r.W_per_L_kg_s_m / scale) ** (2 / 3),
+                       yerr=(2 / 3) * (r.W_per_L_kg_s_m / scale) ** (-1 / 3) * r.W_per_L_err_kg_s_m / scale,
+                       fmt="o", color=colours.get(l), label=f"l = {l}")
+    if fits:
+        ref = fits[max(fits)]
+        xx = np.linspace(0, df.b_over_d.max() * 1.05, 200)
+        ax[2].plot(xx, ref["C"] ** (2 / 3) * np.maximum(xx - ref["k"], 0), color="0.4",
+                   label=f"law of l = {max(fits)}'s fit")
+    ax[2].set(xlabel="b / d_parcel", ylabel="(W / (L rho_b g^0.5 d^1.5))^(2/3)",
+              title="in parcel units: C'^(2/3) (b/d - k)")
+    ax[2].set_xlim(left=0)
+    ax[2].set_ylim(bottom=0)
+    ax[2].legend(fontsize=7)
     ax[1].set(xlabel="slot width b [mm]", ylabel="(W/L)^(2/3) [(kg/s/m)^(2/3)]",
               title="Beverloo: (W/L)^(2/3) = (C' rho_b g^0.5)^(2/3) (b - k d)")
     ax[1].set_xlim(left=0)
