@@ -175,6 +175,10 @@ double Exchange::face_capacity(int d, int i, int j, int k) const {
 
 void Exchange::porosity_source(const VoidFields& now, const fluid::Field& mix_old, const fluid::Field& eps_new,
                                const fluid::Field& eps_old, double dt_f, fluid::Field& mass) const {
+  if (params_.wall_porosity == WallPorosity::Cell) {  // eps is the whole cell's non-solid part: no source
+    mass = fluid::Field{};
+    return;
+  }
   const std::array<int, 3> n = g_.n();
   mass = fluid::make_cell_field(g_);
   fluid::Field share = fluid::make_cell_field(g_);  // mix - eps at t^{n+1}: the walls' share
