@@ -15,11 +15,11 @@
 // Quadrature: each cell is split into 3 x 3 x 3 sub-cubes, each a pseudo-parcel of its
 // reachable volume at its reachable centroid (where phi = r crosses a sub-cube, both from
 // phi's linear approximation there, exact for plane walls), deposited with the parcels'
-// masked weights. Away from walls the 27
-// sub-cube centres of a cell are a lattice of spacing dx/3, on which the TSC weights sum
-// to the exact integral (the spline's transform vanishes at the multiples of 3/dx): the
-// cells of a node's neighbourhood with no wall near ("plain" cells) deposit the exact
-// tabulated values, and C = 1 is reproduced to round-off in the limit of no walls.
+// masked weights. Away from walls the 27 sub-cube centres of a cell are a lattice of
+// spacing dx/3, on which the TSC weights sum to the exact integral (the spline's transform
+// vanishes at the multiples of 3/dx): the cells of a node's neighbourhood with no wall near
+// ("plain" cells) deposit the exact tabulated values, and C = 1 is reproduced to round-off
+// in the limit of no walls.
 #include <algorithm>
 #include <cmath>
 
