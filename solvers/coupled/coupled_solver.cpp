@@ -17,6 +17,7 @@ CoupledSolver::CoupledSolver(DemSolver& dem, fluid::FluidSolver& fluid, fluid::F
   t_gather_ = timers_.id("air -> parcels");
   t_map_ = timers_.id("void fraction");
   t_deposit_ = timers_.id("parcels -> air");
+  t_walls_ = timers_.id("IBM fractions");
   // Not kept as the first step's weights: a restart replaces the parcels after this.
   walls_at(air_.t);
   {
@@ -108,15 +109,14 @@ void CoupledSolver::implicit_air_step(double t_end, CoupledStepStats& st) {
 }
 
 void CoupledSolver::walls_at(double t) {
-  // Cached by body position: only the band around the moving parts is re-evaluated.
+  // The air solver's fractions (cached by body position: only the band around the moving
+  // parts is re-evaluated, and its step at t then finds them current).
   frame_ = dem_.scene().at(t);
-  fluid::update_ibm(air_.grid, frame_, fluid_.params().ibm_samples, walls_);
-  // Over MPI ranks the masks read the fractions beyond the cuts (serial: nothing to do).
-  fluid::FieldSync& sync = fluid_.sync();
-  sync.copy_ghosts(walls_.alpha_cell, fluid::kCells);
-  for (int d = 0; d < 3; ++d) sync.copy_ghosts(walls_.alpha_face[d], d);
-  walls_.any_solid = sync.any(walls_.any_solid);  // a block's ghosts may reach walls it has none of
-  ex_.set_walls(&walls_);
+  {
+    auto s = timers_.scope(t_walls_);
+    fluid_.update_walls(frame_);
+  }
+  ex_.set_walls(&fluid_.ibm());
   ex_.set_frame(&frame_);
 }
 

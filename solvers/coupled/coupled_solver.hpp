@@ -91,19 +91,19 @@ class CoupledSolver {
   CoupledParams params_;
   fluid::Sources src_;
   coupling::VoidStats void_stats_;
-  // Wall fractions for the exchange's masks at time t (the air solver keeps its own copy).
+  // The walls at time t for the exchange's masks and capacities: the air solver's fractions
+  // brought to t (one copy, computed once per step).
   void walls_at(double t);
   void weights_at(double t);
   coupling::ParcelWeights w_;
   bool weights_fresh_ = false;
-  fluid::IbmFractions walls_;
-  geometry::Scene::Frame frame_;  // the walls of walls_ (the capacities' phi)
+  geometry::Scene::Frame frame_;  // the walls of fluid_.ibm() (the capacities' phi)
   // Step 3's mixture fraction and capacities at t^{n+1} (por_) and the mixture at t^n: the
   // air's continuity source next to walls (coupling/exchange.hpp, "Porosity next to walls").
   coupling::VoidFields por_;
   fluid::Field mix_old_;
   PhaseTimers timers_;
-  int t_weights_, t_gather_, t_map_, t_deposit_;
+  int t_weights_, t_gather_, t_map_, t_deposit_, t_walls_;
   // Implicit coupling: the solver, the parcels' mean velocities and coefficients, the air
   // at t^n, the unknown vector (all face velocities).
   std::unique_ptr<ImplicitDragSolver> implicit_;

@@ -196,6 +196,14 @@ void FluidSolver::step_statistics(const FluidState& s, const Sources& src, doubl
   st.cfl = umax * dt / g_.dx;
 }
 
+bool FluidSolver::update_walls(const geometry::Scene::Frame& frame) {
+  if (!update_ibm(g_, frame, params_.ibm_samples, ibm_)) return false;
+  sync_->copy_ghosts(ibm_.alpha_cell, kCells);
+  for (int d = 0; d < 3; ++d) sync_->copy_ghosts(ibm_.alpha_face[d], d);
+  ibm_.any_solid = sync_->any(ibm_.any_solid);
+  return true;
+}
+
 // The step of fluid_solver.hpp: IBM fractions at t^{n+1}, explicit terms, predictor,
 // projection; for time_order 2 a projected stage 1 and the Heun average first.
 StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& frame_end, const Sources& src, double dt) {
@@ -203,7 +211,7 @@ StepStats FluidSolver::advance(FluidState& s, const geometry::Scene::Frame& fram
   StepStats st;
   {
     auto t = timers_.scope("ibm");
-    st.ibm_updated = update_ibm(g_, frame_end, params_.ibm_samples, ibm_);
+    st.ibm_updated = update_walls(frame_end);
   }
   const Vel vel{&s.u, &s.v, &s.w};
   {

@@ -66,6 +66,13 @@ class FluidSolver {
 
   const FluidParams& params() const { return params_; }
   const IbmFractions& ibm() const { return ibm_; }
+  // The walls' fractions at `frame`: recomputed only when a body has moved since the last
+  // call (returns whether they were), then over MPI ranks the ghosts beyond the cuts are
+  // filled and any_solid is made global (a block's ghosts may reach walls it has none of).
+  // advance() calls it with its end frame; a coupling that needs the fractions of that
+  // frame earlier (the void fraction, the kernel masks) calls it first and reads ibm(), so
+  // the fractions are computed once per step.
+  bool update_walls(const geometry::Scene::Frame& frame);
   const PhaseTimers& timers() const { return timers_; }
   PhaseTimers& timers() { return timers_; }
 
