@@ -111,6 +111,9 @@ const std::vector<KeyDoc>& case_key_docs() {
       {"output.dir", "", "output folder (`--output` overrides it)"},
       {"output.energy_interval", "s", "simulated time between rows of energy.csv"},
       {"output.snapshot_interval", "s", "simulated time between snapshots (particles, air)"},
+      {"output.tracer_time", "s",
+       "the parcels' heights at the first snapshot at or after this time are carried in every later snapshot as "
+       "the tracer field z_start (where the powder came from)"},
       {"output.progress_interval", "s", "wall-clock time between progress lines when not on a terminal"},
       {"output.max_speed", "m/s", "a faster parcel or air velocity stops the run (a blow-up)"},
       {"output.checkpoint_interval", "s", "simulated time between checkpoints (checkpoint.bin)"},

@@ -196,6 +196,7 @@ DemCase read_dem_case(Config& cfg) {
   c.output.progress_interval = os.number_or("progress_interval", 10.0, Range::positive());
   c.output.max_speed = os.number_or("max_speed", 50.0, Range::positive());
   c.output.checkpoint_interval = os.number_or("checkpoint_interval", 1e-2, Range::positive());
+  c.output.tracer_time = os.number_or("tracer_time", 0.0, Range::any());
   c.output.compression = static_cast<int>(
       os.integer_or("compression", io::kDefaultCompression, Range::closed(0, io::kMaxCompression)));
   return c;

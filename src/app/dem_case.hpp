@@ -24,6 +24,7 @@ struct OutputSpec {
   double max_speed = 50;            // [m/s] a faster particle stops the run (blow-up)
   double checkpoint_interval = 1e-2;  // [s] simulated, between checkpoints (checkpoint.bin)
   int compression = io::kDefaultCompression;  // deflate level 0..9 of the HDF5 snapshots
+  double tracer_time = 0;           // [s] simulated: the parcels' heights then are the tracer z_start
 };
 
 struct DemCase {

@@ -10,6 +10,8 @@
 #include "app/run_metrics.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
+#include "io/h5_util.hpp"
+#include "io/xdmf_series.hpp"
 #include "particles/particle_io.hpp"
 #include "solvers/run/run_checkpoint.hpp"
 
@@ -19,6 +21,26 @@ namespace {
 
 std::string in_folder(const std::string& dir, const std::string& name) {
   return (std::filesystem::path(dir) / name).string();
+}
+
+// The tracer of the newest snapshot of `dir` at or before `step` that carries one (ids and
+// heights in id order); empty when none does.
+void read_tracer(const std::string& dir, int64_t step, std::vector<int64_t>& ids, std::vector<double>& z) {
+  ids.clear(), z.clear();
+  std::vector<int64_t> steps = io::find_snapshot_steps(dir, "particles");
+  for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
+    if (*it > step) continue;
+    const std::string path = io::snapshot_file_name(dir + "/particles", *it);
+    io::h5::Quiet quiet;
+    io::h5::Id file = io::h5::open_file(path);
+    if (!io::h5::exists(file, "fields/" + std::string(RunOutputs::kTracer))) continue;
+    std::vector<hsize_t> dims;
+    ids = io::h5::read_int64(file, "particles/id", dims, path);
+    z = io::h5::read_double(file, "fields/" + std::string(RunOutputs::kTracer), dims, path);
+    if (ids.size() != z.size()) throw Error(path + ": the tracer has " + std::to_string(z.size()) + " values for " +
+                                            std::to_string(ids.size()) + " parcels");
+    return;
+  }
 }
 
 }  // namespace
@@ -49,6 +71,8 @@ RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const Diagnost
     energy_ = open_csv("energy.csv", energy_csv_columns());
     if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
     if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
+    // A restart after the tracer was taken continues with the one its snapshots carry.
+    if (ctx_.restart) read_tracer(dir, s_.dem().steps(), tracer_id_, tracer_z_);
   });
 }
 
@@ -162,12 +186,35 @@ void RunOutputs::snapshot() {
   const fluid::Field* alpha = s_.with_air() ? &s_.whole_alpha() : nullptr;
   s_.comm().together("snapshot", true, [&] {
     const io::ParticleTable t = to_table(all);
-    snapshots_->write(dem.steps(), dem.time(), t);
+    snapshots_->write(dem.steps(), dem.time(), t, tracer(t), {{kTracer, {"m", kTracerDoc}}});
     if (air) write_air_snapshot(*air_snapshots_, dem.steps(), *air, *alpha);
     // atomic: always a consistent state
     io::write_particles_h5(in_folder(c_.output.dir, "last_good.h5"), t, attrs_, c_.output.compression,
                            io::Instant{dem.time(), dem.steps()});
   });
+}
+
+// The tracer z_start of the table's parcels (in id order, as to_table gives them): taken
+// from the parcels' heights at the first snapshot at or after output.tracer_time, carried
+// from then on; before then, no field.
+io::ScalarFields RunOutputs::tracer(const io::ParticleTable& t) {
+  if (tracer_id_.empty()) {
+    if (s_.dem().time() < c_.output.tracer_time * (1 - 1e-12) - 1e-15) return {};
+    tracer_id_ = t.id;
+    tracer_z_.resize(t.size());
+    for (size_t i = 0; i < t.size(); ++i) tracer_z_[i] = t.x[i].z;
+  }
+  std::vector<double> z(t.size());
+  size_t q = 0;  // both lists ascend in id; parcels are only ever removed
+  for (size_t i = 0; i < t.size(); ++i) {
+    while (q < tracer_id_.size() && tracer_id_[q] < t.id[i]) ++q;
+    if (q == tracer_id_.size() || tracer_id_[q] != t.id[i])
+      throw RunError(fmt::format("t = {:.6g} s: parcel {} has no tracer (it was not present at the tracer time "
+                                 "output.tracer_time = {:g} s)",
+                                 s_.dem().time(), t.id[i], c_.output.tracer_time));
+    z[i] = tracer_z_[q];
+  }
+  return {{kTracer, std::move(z)}};
 }
 
 void RunOutputs::checkpoint(const std::string& path) {

@@ -54,6 +54,10 @@ class RunOutputs {
   void finish(const run::Totals& totals);
 
   const std::string& series_comment() const { return comment_; }
+  // The snapshot field that colours the parcels by where they were at output.tracer_time.
+  static constexpr const char* kTracer = "z_start";
+  static constexpr const char* kTracerDoc =
+      "height of the parcel's centre at the first snapshot at or after output.tracer_time (a tracer)";
   static void save_observers(io::ArchiveWriter& w, const DieDiagnostics& diag, const RunCounters& counters);
   static void load_observers(io::ArchiveReader& r, DieDiagnostics& diag, RunCounters& counters);
 
@@ -62,6 +66,7 @@ class RunOutputs {
   const Particles& parcels(run::RunComm::Fields fields);
   DiagnosticsRow diagnostics_now();
   void account_parcels(const run::Totals& t, long inside);
+  io::ScalarFields tracer(const io::ParticleTable& t);
 
   run::ParticleStepper& s_;
   const DemCase& c_;
@@ -77,6 +82,8 @@ class RunOutputs {
   const Particles* gathered_ = nullptr;
   long gathered_step_ = -1;
   run::RunComm::Fields gathered_fields_ = run::RunComm::Fields::Kinematics;
+  std::vector<int64_t> tracer_id_;  // ascending ids of the parcels at the tracer time (rank 0)
+  std::vector<double> tracer_z_;    // their heights then [m]
   std::optional<DiagnosticsRow> before_;  // at the start of a step that passes a row time
   long n_total_ = 0;                      // parcels present + removed: the run's count
   long seen_removed_ = 0, seen_inside_ = 0;
