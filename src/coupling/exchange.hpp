@@ -216,7 +216,14 @@ class Exchange {
   // Capacity quadrature of one cell (porosity.cpp).
   std::vector<unsigned char> near_walls(int reach) const;
   bool plain_cell(int i, int j, int k, const std::vector<unsigned char>& near) const;
-  void deposit_cell_capacity(int i, int j, int k, double r, bool plain, fluid::Field& cap) const;
+  // A cell with no wall near adds the tabulated shares to cap; one near a wall gives its
+  // sub-cubes' deposits (at most 27, in the order they are added) to `out`.
+  struct CapacityItem {
+    Weights w;
+    double v;
+  };
+  void deposit_plain_capacity(int i, int j, int k, fluid::Field& cap) const;
+  int cell_capacity_items(int i, int j, int k, double r, CapacityItem* out) const;
   bool reachable_part(const Vec3& c, double h, double r, double& frac, Vec3& centroid) const;
   // Face mean of the capacity C on face (i, j, k) of axis d (1 where not normalized).
   double face_capacity(int d, int i, int j, int k) const;

@@ -135,27 +135,29 @@ bool Exchange::reachable_part(const Vec3& c, double h, double r, double& frac, V
   return true;
 }
 
-void Exchange::deposit_cell_capacity(int i, int j, int k, double r, bool plain, fluid::Field& cap) const {
+void Exchange::deposit_plain_capacity(int i, int j, int k, fluid::Field& cap) const {
   static const std::array<double, 3> share = plain_shares();
-  if (plain) {  // the exact tabulated shares (no fold: plain cells lie away from the domain's ends)
-    const std::array<int, 3> n = g_.n();
-    for (int c = -1; c <= 1; ++c)
-      for (int b = -1; b <= 1; ++b)
-        for (int a = -1; a <= 1; ++a) {
-          std::array<int, 3> m{i + a, j + b, k + c};
-          for (int e = 0; e < 3; ++e)
-            if (periodic_[e]) m[e] = (m[e] % n[e] + n[e]) % n[e];
-          // node m receives from cell (i,j,k) at offset (cell - node) = -(a, b, c)
-          cap(m[0], m[1], m[2]) += share[1 - a] * share[1 - b] * share[1 - c];
-        }
-    return;
-  }
+  // the exact tabulated shares (no fold: plain cells lie away from the domain's ends)
+  const std::array<int, 3> n = g_.n();
+  for (int c = -1; c <= 1; ++c)
+    for (int b = -1; b <= 1; ++b)
+      for (int a = -1; a <= 1; ++a) {
+        std::array<int, 3> m{i + a, j + b, k + c};
+        for (int e = 0; e < 3; ++e)
+          if (periodic_[e]) m[e] = (m[e] % n[e] + n[e]) % n[e];
+        // node m receives from cell (i,j,k) at offset (cell - node) = -(a, b, c)
+        cap(m[0], m[1], m[2]) += share[1 - a] * share[1 - b] * share[1 - c];
+      }
+}
+
+int Exchange::cell_capacity_items(int i, int j, int k, double r, CapacityItem* out) const {
   const double h = g_.dx / kSub, half_diag = 0.5 * std::sqrt(3.0) * g_.dx;
   const Vec3 lo = g_.cell_centre(i, j, k) - 0.5 * g_.dx * Vec3{1, 1, 1};
   const bool walls = frame_ && frame_->scene && !frame_->scene->empty();
   const double pc = walls ? frame_->phi(g_.cell_centre(i, j, k)) : INFINITY;
-  if (pc <= r - half_diag) return;  // no centre can be anywhere in the cell
+  if (pc <= r - half_diag) return 0;  // no centre can be anywhere in the cell
   const bool all_in = pc >= r + half_diag;
+  int n = 0;
   for (int c = 0; c < kSub; ++c)
     for (int b = 0; b < kSub; ++b)
       for (int a = 0; a < kSub; ++a) {
@@ -163,8 +165,9 @@ void Exchange::deposit_cell_capacity(int i, int j, int k, double r, bool plain, 
         double frac = 1;
         Vec3 centroid = s0 + 0.5 * h * Vec3{1, 1, 1};
         if (!all_in && !reachable_part(centroid, h, r, frac, centroid)) continue;
-        deposit(cell_weights(centroid, cell_layout_), frac / (kSub * kSub * kSub), cap);
+        out[n++] = {cell_weights(centroid, cell_layout_), frac / (kSub * kSub * kSub)};
       }
+  return n;
 }
 
 void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
@@ -221,10 +224,31 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
               dep(x, y, z) = 1;
             }
       }
+  // The sub-cubes of the cells near walls are evaluated in parallel (the costly part: phi
+  // and its gradient), a chunk of cells at a time, and added to raw one cell after the
+  // other in index order: the same additions in the same order as a serial loop, so the
+  // result is bitwise the same for any thread count.
+  std::vector<std::array<int, 3>> cells;
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i)
-        if (dep(i, j, k) == 1) deposit_cell_capacity(i, j, k, r, is_plain(i, j, k), raw);
+        if (dep(i, j, k) == 1) cells.push_back({i, j, k});
+  constexpr size_t kChunk = 1024, kItems = kSub * kSub * kSub;
+  std::vector<CapacityItem> items(std::min(cells.size(), kChunk) * kItems);
+  std::vector<int> count(std::min(cells.size(), kChunk));  // -1: a plain cell
+  for (size_t c0 = 0; c0 < cells.size(); c0 += kChunk) {
+    const long m = static_cast<long>(std::min(kChunk, cells.size() - c0));
+#pragma omp parallel for schedule(dynamic, 16)
+    for (long q = 0; q < m; ++q) {
+      const auto [i, j, k] = cells[c0 + q];
+      count[q] = is_plain(i, j, k) ? -1 : cell_capacity_items(i, j, k, r, &items[q * kItems]);
+    }
+    for (long q = 0; q < m; ++q) {
+      const auto [i, j, k] = cells[c0 + q];
+      if (count[q] < 0) deposit_plain_capacity(i, j, k, raw);
+      for (int e = 0; e < count[q]; ++e) deposit(items[q * kItems + e].w, items[q * kItems + e].v, raw);
+    }
+  }
   if (sync_) sync_->sum_deposits(raw, fluid::kCells);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
