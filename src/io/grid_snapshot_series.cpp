@@ -24,23 +24,9 @@ const FieldInfo* air_field_info(const std::string& name) {
 
 GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
                                        int compression)
-    : dir_(std::move(dir)),
-      prefix_(std::move(prefix)),
-      attributes_(std::move(attributes)),
-      compression_(compression),
-      index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
-  check_series_name(prefix_, "grid snapshot prefix");
-  detail::check_reserved_attributes(attributes_, "grid snapshot");
-  h5::check_level(compression_, dir_ + "/" + prefix_ + "_*.h5");
-  std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
+    : H5Series(std::move(dir), std::move(prefix), std::move(attributes), compression, "grid snapshot") {
   if (resume)
-    for (int64_t s : find_snapshot_steps(dir_, prefix_)) index_.set(s, render(read_entry(s)));
-}
-
-std::string GridSnapshotSeries::snapshot_path(int64_t step) const {
-  return dir_ + "/" + snapshot_file_name(prefix_, step);
+    for (int64_t s : existing_steps()) index_.set(s, render(read_entry(s)));
 }
 
 std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
@@ -102,35 +88,32 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
     grid.reset();
     file.close_checked("'" + path + "'");
   }
-  target.commit();
-  index_.set(step, render(e));
-  index_.write();
+  publish(target, step, render(e));
   return path;
 }
 
 GridSnapshotSeries::Entry GridSnapshotSeries::read_entry(int64_t step) const {
-  h5::Quiet quiet;
-  const std::string path = snapshot_path(step);
-  h5::Id file = h5::open_file(path);
-  Entry e;
-  e.step = step;
-  e.time = h5::read_double_attribute(file, "time", path);
-  std::vector<hsize_t> dims;
-  std::vector<int64_t> n = h5::read_int64(file, "grid/n", dims, path);
-  std::vector<double> o = h5::read_double(file, "grid/origin", dims, path);
-  std::vector<double> h = h5::read_double(file, "grid/spacing", dims, path);
-  if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error("HDF5 file '" + path + "': malformed /grid");
-  e.n = {n[0], n[1], n[2]};
-  e.origin = {o[0], o[1], o[2]};
-  e.spacing = {h[0], h[1], h[2]};
-  h5::Id cells(H5Gopen2(file, "cells", H5P_DEFAULT), H5Gclose);
-  if (cells.get() < 0) throw Error("HDF5 file '" + path + "': no group '/cells'");
-  for (const std::string& name : h5::members(cells, path)) {
-    h5::Id set(H5Dopen2(cells, name.c_str(), H5P_DEFAULT), H5Dclose);
-    h5::Id space(H5Dget_space(set), H5Sclose);
-    (H5Sget_simple_extent_ndims(space) == 4 ? e.vectors : e.scalars).push_back(name);
-  }
-  return e;
+  return read_back(step, [&](const h5::Id& file, const std::string& path, double time) {
+    Entry e;
+    e.step = step;
+    e.time = time;
+    std::vector<hsize_t> dims;
+    std::vector<int64_t> n = h5::read_int64(file, "grid/n", dims, path);
+    std::vector<double> o = h5::read_double(file, "grid/origin", dims, path);
+    std::vector<double> h = h5::read_double(file, "grid/spacing", dims, path);
+    if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error("HDF5 file '" + path + "': malformed /grid");
+    e.n = {n[0], n[1], n[2]};
+    e.origin = {o[0], o[1], o[2]};
+    e.spacing = {h[0], h[1], h[2]};
+    h5::Id cells(H5Gopen2(file, "cells", H5P_DEFAULT), H5Gclose);
+    if (cells.get() < 0) throw Error("HDF5 file '" + path + "': no group '/cells'");
+    for (const std::string& name : h5::members(cells, path)) {
+      h5::Id set(H5Dopen2(cells, name.c_str(), H5P_DEFAULT), H5Dclose);
+      h5::Id space(H5Dget_space(set), H5Sclose);
+      (H5Sget_simple_extent_ndims(space) == 4 ? e.vectors : e.scalars).push_back(name);
+    }
+    return e;
+  });
 }
 
 std::string GridSnapshotSeries::render(const Entry& e) const {
