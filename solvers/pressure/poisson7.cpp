@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "solvers/pressure/stencil_rows.hpp"
 #include "solvers/pressure/union_find.hpp"
 
 namespace cgdem::pressure {
@@ -232,21 +233,14 @@ void Poisson7::gauss_seidel_pair(const double* b, double* x, int first) const {
 void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
-  const long plane = long(nx) * ny;
     {
       const long c0 = long(nx) * (j + long(ny) * k);
       double* xr = x + c0;
       const double* br = b + c0;
       const double* d = diag_.data() + c0;
       const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
-      const double* xs = (j > 0) ? xr - nx : (py ? xr + long(nx) * (ny - 1) : xr);
-      const double* xn = (j < ny - 1) ? xr + nx : (py ? xr - long(nx) * (ny - 1) : xr);
-      const double* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-      const double* wn = wy_.data() + long(nx) * ((j == ny - 1 && py ? 0 : j + 1) + long(ny + 1) * k);
-      const double* xb = (k > 0) ? xr - plane : (pz ? xr + plane * (nz - 1) : xr);
-      const double* xt = (k < nz - 1) ? xr + plane : (pz ? xr - plane * (nz - 1) : xr);
-      const double* wb = wz_.data() + c0;
-      const double* wt = wz_.data() + (k == nz - 1 && pz ? long(nx) * j : c0 + plane);
+      const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+          row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
       // A periodic axis of odd length breaks the colouring at the wrap; the sweep stays a
       // fixed, thread-independent sequence but is then only approximately red-black.
       for (int i = (j + k + color) & 1; i < nx; i += 2) {
@@ -273,14 +267,8 @@ void Poisson7::apply_rows(const double* x, double* y, const double* b, double* r
       const double* d = diag_.data() + c0;
       const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
       // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
-      const double* xs = (j > 0) ? xr - nx : (py ? xr + long(nx) * (ny - 1) : xr);
-      const double* xn = (j < ny - 1) ? xr + nx : (py ? xr - long(nx) * (ny - 1) : xr);
-      const double* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-      const double* wn = wy_.data() + long(nx) * ((j == ny - 1 && py ? 0 : j + 1) + long(ny + 1) * k);
-      const double* xb = (k > 0) ? xr - plane : (pz ? xr + plane * (nz - 1) : xr);
-      const double* xt = (k < nz - 1) ? xr + plane : (pz ? xr - plane * (nz - 1) : xr);
-      const double* wb = wz_.data() + c0;
-      const double* wt = wz_.data() + (k == nz - 1 && pz ? long(nx) * j : c0 + plane);
+      const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+          row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
       for (int i = 0; i < nx; ++i)
         yr[i] = d[i] * xr[i] - ws[i] * xs[i] - wn[i] * xn[i] - wb[i] * xb[i] - wt[i] * xt[i];
       for (int i = 1; i < nx; ++i) yr[i] -= wxr[i] * xr[i - 1];
