@@ -23,6 +23,40 @@ namespace {
 
 constexpr double kMaxFlowSteps = 1e9;
 
+// The fixed step from exactly one of flow.dt (end a whole number of steps) and flow.cfl (a
+// fraction of the explicit limit), at most kMaxFlowSteps steps and within the explicit limit
+// of the air solver. Reads c.grid, c.amplitude, c.t_end and c.fluid; writes c.dt and c.steps.
+void resolve_step(const Section& s, FlowCase& c) {
+  const fluid::FluidParams& f = c.fluid;
+  const double dx = c.grid.dx;
+  const bool has_dt = s.has("dt"), has_cfl = s.has("cfl");
+  if (has_dt == has_cfl) s.fail(has_dt ? "cfl" : "dt", "give exactly one of flow.dt and flow.cfl");
+  if (has_dt) {
+    c.dt = s.number("dt", Range::open_closed(0, 1e6));
+    const double steps = c.t_end / c.dt;
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("dt", fmt::format("flow.end / flow.dt = {:.3g} steps, more than {:g}", steps, kMaxFlowSteps));
+    c.steps = std::lround(steps);
+    if (c.steps < 1 || std::fabs(steps - c.steps) > 1e-9 * steps)
+      s.fail("dt", fmt::format("flow.end = {:g} s is not a whole number of steps of {:g} s", c.t_end, c.dt));
+  }
+  const double dt_adv = dx / (2 * c.amplitude), dt_visc = dx * dx * f.rho / (6 * f.mu);
+  if (has_cfl) {
+    const double cfl = s.number("cfl", Range::open_closed(0, 1));
+    const double steps = std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9);
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("cfl", fmt::format("flow.end = {:g} s takes {:.3g} steps at this Courant number, more than {:g}", c.t_end,
+                                steps, kMaxFlowSteps));
+    c.steps = static_cast<long>(steps);
+    c.dt = c.t_end / c.steps;
+  }
+  if (c.dt > dt_adv * (1 + 1e-12) || c.dt > dt_visc * (1 + 1e-12))
+    s.fail(has_dt ? "dt" : "cfl",
+           fmt::format("the step {:g} s exceeds the explicit limit of the air solver on {} cells: {:g} s (Courant "
+                       "number 2 U0 dt/dx = 1: {:g} s; viscous dx^2 rho/(6 mu): {:g} s)",
+                       c.dt, c.n, std::min(dt_adv, dt_visc), dt_adv, dt_visc));
+}
+
 }  // namespace
 
 bool is_flow_case(Config& cfg) { return cfg.root().has("flow"); }
@@ -52,33 +86,7 @@ FlowCase read_flow_case(Config& cfg) {
   f.visc_safety = 1.0;
 
   c.grid = {c.n, c.n, 1, c.length / c.n, {0, 0, 0}};
-  const double dx = c.grid.dx;
-  const bool has_dt = s.has("dt"), has_cfl = s.has("cfl");
-  if (has_dt == has_cfl) s.fail(has_dt ? "cfl" : "dt", "give exactly one of flow.dt and flow.cfl");
-  if (has_dt) {
-    c.dt = s.number("dt", Range::open_closed(0, 1e6));
-    const double steps = c.t_end / c.dt;
-    if (!(steps <= kMaxFlowSteps))
-      s.fail("dt", fmt::format("flow.end / flow.dt = {:.3g} steps, more than {:g}", steps, kMaxFlowSteps));
-    c.steps = std::lround(steps);
-    if (c.steps < 1 || std::fabs(steps - c.steps) > 1e-9 * steps)
-      s.fail("dt", fmt::format("flow.end = {:g} s is not a whole number of steps of {:g} s", c.t_end, c.dt));
-  }
-  const double dt_adv = dx / (2 * c.amplitude), dt_visc = dx * dx * f.rho / (6 * f.mu);
-  if (has_cfl) {
-    const double cfl = s.number("cfl", Range::open_closed(0, 1));
-    const double steps = std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9);
-    if (!(steps <= kMaxFlowSteps))
-      s.fail("cfl", fmt::format("flow.end = {:g} s takes {:.3g} steps at this Courant number, more than {:g}", c.t_end,
-                                steps, kMaxFlowSteps));
-    c.steps = static_cast<long>(steps);
-    c.dt = c.t_end / c.steps;
-  }
-  if (c.dt > dt_adv * (1 + 1e-12) || c.dt > dt_visc * (1 + 1e-12))
-    s.fail(has_dt ? "dt" : "cfl",
-           fmt::format("the step {:g} s exceeds the explicit limit of the air solver on {} cells: {:g} s (Courant "
-                       "number 2 U0 dt/dx = 1: {:g} s; viscous dx^2 rho/(6 mu): {:g} s)",
-                       c.dt, c.n, std::min(dt_adv, dt_visc), dt_adv, dt_visc));
+  resolve_step(s, c);
   f.validate();
 
   Section os = cfg.root().optional_section("output").value_or(Section(&cfg, "output"));
