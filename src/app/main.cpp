@@ -153,6 +153,31 @@ void add_keys_command(CLI::App& app, KeysArgs& a) {
       ->check(CLI::ExistingFile);
 }
 
+// The analysis commands (scaling/*_command.hpp), added to the app in the order of --help.
+struct AnalysisCommands {
+  explicit AnalysisCommands(CLI::App& app) : spectrum(app), converge(app), scale(app), compare(app) {}
+  // The selected one's exit code after parsing, or nothing when none is selected.
+  std::optional<int> run_selected() const {
+    if (spectrum.selected()) return spectrum.run();
+    if (converge.selected()) return converge.run();
+    if (scale.selected()) return scale.run();
+    if (compare.selected()) return compare.run();
+    return std::nullopt;
+  }
+  cgdem::scaling::SpectrumCommand spectrum;
+  cgdem::scaling::ConvergeCommand converge;
+  cgdem::scaling::ScaleCommand scale;
+  cgdem::scaling::CompareCommand compare;
+};
+
+// `cgdem run` in this process (OpenMP threads as given).
+int run_case(const RunArgs& run, int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+  cgdem::app::RunRequest request{run.case_file, run.sets, run.output, run.restart};
+  request.check = run.check_only;
+  return cgdem::app::run_case_file(request);
+}
+
 // Ends the process after an error was printed, without the exit handlers: after a failed
 // write (disk full, file-size limit) HDF5 1.10's own exit handler tries again to flush the
 // file it could not close and crashes (SIGSEGV in H5F__close_cb), which would turn the
@@ -180,10 +205,7 @@ int main(int argc, char** argv) {
   add_bench_commands(app, bench);
   KeysArgs keys;
   add_keys_command(app, keys);
-  cgdem::scaling::SpectrumCommand spectrum(app);
-  cgdem::scaling::ConvergeCommand converge(app);
-  cgdem::scaling::ScaleCommand scale(app);
-  cgdem::scaling::CompareCommand compare(app);
+  AnalysisCommands analysis(app);  // CLI11 writes the parsed options into its members
 
   CLI11_PARSE(app, argc, argv);
   // A file-size limit (ulimit -f) must make write() fail with EFBIG, which the writers
@@ -208,18 +230,10 @@ int main(int argc, char** argv) {
       if (launched.rank != 0) return 2;
       throw;
     }
-    if (*run.sub) {
-      if (threads > 0) omp_set_num_threads(threads);
-      cgdem::app::RunRequest request{run.case_file, run.sets, run.output, run.restart};
-      request.check = run.check_only;
-      return cgdem::app::run_case_file(request);
-    }
+    if (*run.sub) return run_case(run, threads);
     if (*keys.sub) return cgdem::app::keys_command(keys.output, keys.check);
     if (const auto status = run_bench(bench)) return *status;
-    if (spectrum.selected()) return spectrum.run();
-    if (converge.selected()) return converge.run();
-    if (scale.selected()) return scale.run();
-    if (compare.selected()) return compare.run();
+    if (const auto status = analysis.run_selected()) return *status;
   } catch (const cgdem::Error& e) {
     std::fprintf(stderr, "cgdem: error: %s\n", e.what());
     stop_after_error(2);
