@@ -25,6 +25,16 @@ void check_size(const std::vector<double>& a, long want, const char* name) {
       throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
 }
 
+// True when a and b have the same size and the same faces (or cells) with a value > 0.
+bool same_sign_pattern(const std::vector<double>& a, const std::vector<double>& b, bool par) {
+  if (a.size() != b.size()) return false;
+  const long m = static_cast<long>(a.size());
+  bool eq = true;
+#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
+  for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
+  return eq;
+}
+
 }  // namespace
 
 double dot(const double* a, const double* b, long n) {
@@ -62,7 +72,6 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   ax_ = ax;
   ay_ = ay;
   az_ = az;
-  const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy), hz = 1 / (g_.dz * g_.dz);
   // The previous weights decide whether the connectivity (which faces have w > 0) changed.
   const bool had = !comp_.empty();
   std::vector<double> old_x, old_y, old_z, old_open;
@@ -72,12 +81,30 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   wz_.assign(az.size(), 0.0);
   diag_.assign(n(), 0.0);
   open_.assign(n(), 0.0);
-  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
-  const auto& bc = g_.bc;
   const bool par = n() >= kParallelMin;
   // Every cell sums its faces in the same order as a serial sweep x, y, z (face index
   // ascending): x and y faces touch one k plane (parallel over k), z faces one (i, j) column
   // (parallel over j), so the sums are those of the serial loops.
+  add_xy_faces(ax, ay);
+  add_z_faces(az);
+  const long N = n();
+#pragma omp parallel for schedule(static) if (par)
+  for (long c = 0; c < N; ++c) diag_[c] += open_[c];
+  // Same pattern of positive weights: the components (and floating cells) are unchanged.
+  if (had && same_sign_pattern(old_x, wx_, par) && same_sign_pattern(old_y, wy_, par) &&
+      same_sign_pattern(old_z, wz_, par) && same_sign_pattern(old_open, open_, par))
+    return;
+  label_components();
+}
+
+// x faces: interior, periodic wrap (face 0) or boundary (Open sides into open_); y faces
+// likewise; one k plane per iteration of the parallel loop.
+void Poisson7::add_xy_faces(const std::vector<double>& ax, const std::vector<double>& ay) {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy);
+  const bool px = periodic(0), py = periodic(1);
+  const auto& bc = g_.bc;
+  const bool par = n() >= kParallelMin;
 #pragma omp parallel for schedule(static) if (par)
   for (int k = 0; k < nz; ++k) {
     for (int j = 0; j < ny; ++j) {
@@ -102,6 +129,15 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (j == ny && bc[3] == Boundary::Open) open_[cs] += 2 * w;
       }
   }
+}
+
+// z faces, likewise; one (i, j) column per iteration of the parallel loop (over j).
+void Poisson7::add_z_faces(const std::vector<double>& az) {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const double hz = 1 / (g_.dz * g_.dz);
+  const bool pz = periodic(2);
+  const auto& bc = g_.bc;
+  const bool par = n() >= kParallelMin;
   const long plane = long(nx) * ny;
 #pragma omp parallel for schedule(static) if (par)
   for (int j = 0; j < ny; ++j)
@@ -115,20 +151,6 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (k == 0 && bc[4] == Boundary::Open) open_[ct] += 2 * w;
         else if (k == nz && bc[5] == Boundary::Open) open_[cb] += 2 * w;
       }
-  const long N = n();
-#pragma omp parallel for schedule(static) if (par)
-  for (long c = 0; c < N; ++c) diag_[c] += open_[c];
-  // Same pattern of positive weights: the components (and floating cells) are unchanged.
-  auto same = [par](const std::vector<double>& a, const std::vector<double>& b) {
-    if (a.size() != b.size()) return false;
-    const long m = static_cast<long>(a.size());
-    bool eq = true;
-#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
-    for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
-    return eq;
-  };
-  if (had && same(old_x, wx_) && same(old_y, wy_) && same(old_z, wz_) && same(old_open, open_)) return;
-  label_components();
 }
 
 void Poisson7::label_components() {
