@@ -22,6 +22,41 @@ const FieldInfo* air_field_info(const std::string& name) {
   return it == known.end() ? nullptr : &it->second;
 }
 
+namespace {
+
+// A cell field's units and description: from write()'s `info`, else air_field_info().
+const FieldInfo& field_info(const FieldInfos& info, const std::string& name, const std::string& path) {
+  auto it = info.find(name);
+  if (it != info.end()) return it->second;
+  if (const FieldInfo* known = air_field_info(name)) return *known;
+  throw Error(path + ": grid field '" + name + "' has no units and description");
+}
+
+// The cell fields of write() checked (a valid name with units and description, each name
+// once across scalars and vectors, ncell values per array); their names, in map order, into
+// scalar_names and vector_names.
+void check_fields(const std::string& path, size_t ncell, const CellScalars& scalars, const CellVectors& vectors,
+                  const FieldInfos& info, std::vector<std::string>& scalar_names,
+                  std::vector<std::string>& vector_names) {
+  std::set<std::string> names;
+  auto check_field = [&](const std::string& name, size_t size) {
+    check_series_name(name, "grid field name");
+    field_info(info, name, path);
+    if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
+    if (size != ncell)
+      throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
+                  std::to_string(ncell) + " cells");
+  };
+  for (const auto& [name, v] : scalars) check_field(name, v.size()), scalar_names.push_back(name);
+  for (const auto& [name, v] : vectors) {
+    for (const auto& comp : v) check_field(name, comp.size()), names.erase(name);
+    names.insert(name);
+    vector_names.push_back(name);
+  }
+}
+
+}  // namespace
+
 GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
                                        int compression)
     : H5Series(std::move(dir), std::move(prefix), std::move(attributes), compression, "grid snapshot") {
@@ -40,27 +75,8 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
   if (!(spacing.x > 0 && spacing.y > 0 && spacing.z > 0)) throw Error(path + ": grid spacing must be > 0");
   const size_t ncell = static_cast<size_t>(nx) * ny * nz;
   Entry e{step, time, {nx, ny, nz}, origin, spacing, {}, {}};
-  std::set<std::string> names;
-  auto info_of = [&](const std::string& name) -> const FieldInfo& {
-    auto it = info.find(name);
-    if (it != info.end()) return it->second;
-    if (const FieldInfo* known = air_field_info(name)) return *known;
-    throw Error(path + ": grid field '" + name + "' has no units and description");
-  };
-  auto check_field = [&](const std::string& name, size_t size) {
-    check_series_name(name, "grid field name");
-    info_of(name);
-    if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
-    if (size != ncell)
-      throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
-                  std::to_string(ncell) + " cells");
-  };
-  for (const auto& [name, v] : scalars) check_field(name, v.size()), e.scalars.push_back(name);
-  for (const auto& [name, v] : vectors) {
-    for (const auto& comp : v) check_field(name, comp.size()), names.erase(name);
-    names.insert(name);
-    e.vectors.push_back(name);
-  }
+  check_fields(path, ncell, scalars, vectors, info, e.scalars, e.vectors);
+  auto info_of = [&](const std::string& name) -> const FieldInfo& { return field_info(info, name, path); };
 
   const hsize_t Z = nz, Y = ny, X = nx;
   AtomicTarget target(path);
