@@ -33,6 +33,8 @@ cgdem_module(cgdem_pressure DIRS solvers/pressure
   DEPS cgdem_core SUNDIALS::kinsol SUNDIALS::nvecserial PkgConfig::FFTW3 ${FFTW3_OMP_LIB} cgdem_suitesparse)
 cgdem_module(cgdem_fluid DIRS src/fluid solvers/fluid DEPS cgdem_pressure cgdem_geometry cgdem_io)
 cgdem_module(cgdem_coupling DIRS src/coupling solvers/coupled DEPS cgdem_dem cgdem_fluid)
+# The observables of a run read from the parcels and the air (the die-filling diagnostics).
+cgdem_module(cgdem_diagnostics DIRS src/diagnostics DEPS cgdem_dem cgdem_fluid)
 # The building blocks of the decomposition: blocks of parcels and of air cells, parcel
 # migration with contact history, the portable state; with MPI, src/parallel/mpi: the
 # exchanges, gathers and halos over ranks.
@@ -67,7 +69,7 @@ endif()
 file(GLOB CGDEM_APP_SRCS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/app/*.cpp)
 list(REMOVE_ITEM CGDEM_APP_SRCS ${PROJECT_SOURCE_DIR}/src/app/main.cpp)
 add_library(cgdem_app STATIC ${CGDEM_APP_SRCS})
-target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling cgdem_run)
+target_link_libraries(cgdem_app PUBLIC cgdem_dem cgdem_fluid cgdem_coupling cgdem_diagnostics cgdem_run)
 target_compile_options(cgdem_app PRIVATE -Wall -Wextra)
 # `mpirun -np N cgdem run` (src/app/mpi): only in builds with MPI; a single-process run
 # never initialises MPI.
@@ -103,6 +105,7 @@ if(CGDEM_BUILD_TESTS AND GTest_FOUND)
   cgdem_tests(pressure cgdem_pressure)
   cgdem_tests(fluid cgdem_fluid)
   cgdem_tests(coupling cgdem_coupling)
+  cgdem_tests(diagnostics cgdem_diagnostics)
   cgdem_tests(app cgdem_app)
   cgdem_tests(scaling cgdem_scaling)
   cgdem_tests(parallel cgdem_parallel)

@@ -30,17 +30,43 @@ std::string budget_threshold(const std::string& q) {
   return k == "velocity" ? "momentum" : k == "own peak" ? "rotation" : "energy";
 }
 
+namespace {
+
+// Drops the rows of c before t0 (output times carry rounding: 1e-9 of the span); at least
+// one row must remain.
+void drop_rows_before(CsvTable& c, double t0, const std::string& path) {
+  const auto& t = c.col("t");
+  const double tol = 1e-9 * std::max(1e-300, std::fabs(t.back() - t.front()));
+  size_t first = 0;
+  while (first < t.size() && t[first] < t0 - tol) ++first;
+  if (first == t.size()) throw Error(fmt::format("{}: no row at or after t = {:g} s", path, t0));
+  for (auto& col : c.columns) col.erase(col.begin(), col.begin() + static_cast<long>(first));
+}
+
+// Rows repeated at the same time (a restart) keep the last one: of b.t and every b.q.
+void keep_last_of_repeated_times(Budget& b) {
+  std::vector<size_t> keep;
+  for (size_t i = 0; i < b.t.size(); ++i) {
+    while (!keep.empty() && b.t[keep.back()] >= b.t[i]) keep.pop_back();
+    keep.push_back(i);
+  }
+  if (keep.size() != b.t.size()) {
+    auto pick = [&](std::vector<double>& v) {
+      std::vector<double> o;
+      for (size_t i : keep) o.push_back(v[i]);
+      v = std::move(o);
+    };
+    pick(b.t);
+    for (auto& [n, v] : b.q) pick(v);
+  }
+}
+
+}  // namespace
+
 Budget read_budget(const std::string& path, const std::string& label, double ratio, double t0) {
   CsvTable c = read_csv_table(path);
   if (c.rows() == 0) throw Error(fmt::format("{}: no rows", path));
-  {  // keep the rows from t0 on (output times carry rounding: 1e-9 of the span)
-    const auto& t = c.col("t");
-    const double tol = 1e-9 * std::max(1e-300, std::fabs(t.back() - t.front()));
-    size_t first = 0;
-    while (first < t.size() && t[first] < t0 - tol) ++first;
-    if (first == t.size()) throw Error(fmt::format("{}: no row at or after t = {:g} s", path, t0));
-    for (auto& col : c.columns) col.erase(col.begin(), col.begin() + static_cast<long>(first));
-  }
+  drop_rows_before(c, t0, path);
   Budget b;
   b.label = label;
   b.ratio = ratio;
@@ -73,21 +99,7 @@ Budget read_budget(const std::string& path, const std::string& label, double rat
   b.q["v_y"] = per_mass("py", false);
   b.q["v_z"] = per_mass("pz", false);
   b.q["closure"] = per_mass("E_balance", true);
-  // Rows repeated at the same time (a restart) keep the last one.
-  std::vector<size_t> keep;
-  for (size_t i = 0; i < b.t.size(); ++i) {
-    while (!keep.empty() && b.t[keep.back()] >= b.t[i]) keep.pop_back();
-    keep.push_back(i);
-  }
-  if (keep.size() != b.t.size()) {
-    auto pick = [&](std::vector<double>& v) {
-      std::vector<double> o;
-      for (size_t i : keep) o.push_back(v[i]);
-      v = std::move(o);
-    };
-    pick(b.t);
-    for (auto& [n, v] : b.q) pick(v);
-  }
+  keep_last_of_repeated_times(b);
   return b;
 }
 

@@ -253,10 +253,11 @@ std::vector<MetricComparison> compare_metrics(const std::vector<CompareRun>& run
   return out;
 }
 
-Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& s) {
-  if (!(s.dt > 0) || !std::isfinite(s.dt)) throw Error(fmt::format("--dt: {} s is not a positive interval", s.dt));
-  Curves c;
-  c.dt = s.dt;
+namespace {
+
+// The runs' common time range (narrowed by --from/--to; at most 10,000 rows of --dt) into
+// c.t_lo and c.t_hi; returns each run's sample times (to be joined into common times).
+std::vector<Series> common_range(const std::vector<CompareRun>& runs, const CurveSettings& s, Curves& c) {
   c.t_lo = -std::numeric_limits<double>::infinity();
   c.t_hi = std::numeric_limits<double>::infinity();
   std::vector<std::string> spans;
@@ -276,8 +277,12 @@ Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& 
   if ((c.t_hi - c.t_lo) / s.dt > 1e4)
     throw Error(fmt::format("--dt: {:g} s gives more than 10,000 rows over {:g} to {:g} s; give a larger one", s.dt,
                             c.t_lo, c.t_hi));
-  // The sample times: the multiples of dt inside [t_lo, t_hi] (both ends when none is), as
-  // k / n when dt = 1/n (7 / 50 = 0.14, where 7 * 0.02 = 0.14000000000000001).
+  return all;
+}
+
+// The sample times into c.times: the multiples of dt inside [t_lo, t_hi] (both ends when none
+// is), as k / n when dt = 1/n (7 / 50 = 0.14, where 7 * 0.02 = 0.14000000000000001).
+void sample_times(const CurveSettings& s, Curves& c) {
   const double eps = 1e-9, per_s = std::round(1 / s.dt);
   const bool whole = per_s >= 1 && std::fabs(1 / s.dt - per_s) < eps * per_s;
   for (auto k = static_cast<long>(std::ceil(c.t_lo / s.dt - eps));
@@ -285,13 +290,12 @@ Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& 
     c.times.push_back(
         std::clamp(whole ? static_cast<double>(k) / per_s : static_cast<double>(k) * s.dt, c.t_lo, c.t_hi));
   if (c.times.empty()) c.times = {c.t_lo, c.t_hi};
-  // The first run's own samples in the range (the window joins the spans as one more series).
-  all.push_back({{c.t_lo, c.t_hi}, {}});
-  const std::vector<double> ref_t = common_times(runs[0].diagnostics.col("t"), all);
-  c.reference_points = ref_t.size();
+}
 
-  // Curves by quantity (mass_in_die, p_A: the names without their unit suffix), so that runs
-  // written before the names carried units compare with those written after.
+// The curves by quantity (mass_in_die, p_A: the names without their unit suffix, so that runs
+// written before the names carried units compare with those written after), in the order
+// the runs first name them, and their units (from the files, or from the quantity's name).
+std::pair<std::vector<std::string>, std::vector<std::string>> quantities(const std::vector<CompareRun>& runs) {
   std::vector<std::string> columns, units;
   for (const auto& r : runs)
     for (size_t k = 0; k < r.diagnostics.names.size(); ++k) {
@@ -302,6 +306,24 @@ Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& 
     }
   for (size_t k = 0; k < columns.size(); ++k)
     if (units[k].empty()) units[k] = column_unit(columns[k]);
+  return {columns, units};
+}
+
+}  // namespace
+
+Curves compare_curves(const std::vector<CompareRun>& runs, const CurveSettings& s) {
+  if (!(s.dt > 0) || !std::isfinite(s.dt)) throw Error(fmt::format("--dt: {} s is not a positive interval", s.dt));
+  Curves c;
+  c.dt = s.dt;
+  std::vector<Series> all = common_range(runs, s, c);
+  sample_times(s, c);
+  // The first run's own samples in the range (the window joins the spans as one more series).
+  all.push_back({{c.t_lo, c.t_hi}, {}});
+  const std::vector<double> ref_t = common_times(runs[0].diagnostics.col("t"), all);
+  c.reference_points = ref_t.size();
+  const auto [columns, units] = quantities(runs);
+  // Per quantity with a finite value in some run: the curves on c.times and their distances
+  // to the first run's on its own times.
   for (size_t q = 0; q < columns.size(); ++q) {
     const std::string& col = columns[q];
     if (std::none_of(runs.begin(), runs.end(), [&](const CompareRun& r) { return has_finite(r, col); })) {

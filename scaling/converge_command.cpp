@@ -230,57 +230,44 @@ std::string markdown_text(const std::vector<MetricStudy>& studies, const std::st
   return s;
 }
 
-}  // namespace
-
-ConvergeCommand::ConvergeCommand(CLI::App& app)
-    : sub_(app.add_subcommand("converge", "refinement study: observed order, Richardson extrapolation, GCI")),
-      o_(std::make_unique<Options>()) {
-  sub_->add_option("case", o_->case_file, "case file (TOML)")->required()->check(CLI::ExistingFile);
-  sub_->add_option("--vary", o_->vary, "key.path=v1,v2,v3[,...]: the levels (at least 3)")->required();
-  sub_->add_option("--metric", o_->metrics, "metric of metrics.csv to analyse (repeatable)")->required();
-  sub_->add_option("--set", o_->sets, "override a key in every run: key.path=value (repeatable)");
-  sub_->add_option("--output", o_->output, "study folder (default out/converge_<case name>)");
-  sub_->add_option("--h-from", o_->h_from, "h of a level: value (default), 1/value, or a metric name");
-  sub_->add_option("--exact", o_->exact, "NAME=VALUE: known limit of a metric, adds a log-log fit (repeatable)");
-  sub_->add_flag("--reuse", o_->reuse, "do not rerun levels whose folder has metrics.csv and the same resolved config");
-  sub_->add_option("--threads", o_->threads, "OpenMP threads")->check(CLI::PositiveNumber);
-}
-
-int ConvergeCommand::run() const {
-  const Options& o = *o_;
-  const Vary vary = parse_vary(o.vary);
-  const auto exact = parse_exact(o.exact, o.metrics);
-  for (const auto& t : vary.texts)
-    if (t.find('/') != std::string::npos) throw Error(fmt::format("--vary {}: level '{}' contains '/'", vary.key, t));
-  if (o.threads > 0) omp_set_num_threads(o.threads);
-  const std::string out = o.output.empty() ? "out/converge_" + fs::path(o.case_file).stem().string() : o.output;
-  fs::create_directories(out);
-
+// The levels, in the order given: each run (or reused) into out/<key>=<value>/ with the
+// common --set keys and its level applied last, its h taken as --h-from says (positive, no
+// two levels alike), every requested metric present or one cgdem may leave out.
+std::vector<LevelRun> run_levels(const std::string& case_file, const std::vector<std::string>& common_sets,
+                                 const Vary& vary, const std::string& h_from, const std::vector<std::string>& metrics,
+                                 const std::string& out, bool reuse) {
   std::vector<LevelRun> runs;
   for (size_t i = 0; i < vary.values.size(); ++i) {
     const std::string label = vary.key + "=" + vary.texts[i];
-    std::vector<std::string> sets = o.sets;
+    std::vector<std::string> sets = common_sets;
     sets.push_back(label);
-    LevelRun run = run_level({o.case_file, sets, (fs::path(out) / label).string(), ""}, label, o.reuse);
+    LevelRun run = run_level({case_file, sets, (fs::path(out) / label).string(), ""}, label, reuse);
     run.value = vary.values[i];
-    if (o.h_from == "value") run.h = run.value;
-    else if (o.h_from == "1/value") run.h = 1.0 / run.value;
-    else run.h = io::metric(run.metrics, o.h_from, label + " (--h-from)");
+    if (h_from == "value") run.h = run.value;
+    else if (h_from == "1/value") run.h = 1.0 / run.value;
+    else run.h = io::metric(run.metrics, h_from, label + " (--h-from)");
     if (!(run.h > 0) || !std::isfinite(run.h))
-      throw Error(fmt::format("--h-from {}: h = {:g} at {} is not a positive number", o.h_from, run.h, label));
+      throw Error(fmt::format("--h-from {}: h = {:g} at {} is not a positive number", h_from, run.h, label));
     for (const auto& r : runs)
-      if (r.h == run.h) throw Error(fmt::format("--h-from {}: {} and {} have the same h = {:g}", o.h_from, r.label, label, run.h));
-    for (const auto& name : o.metrics)  // a misspelt name stops here; one cgdem may leave out is "not computed"
+      if (r.h == run.h) throw Error(fmt::format("--h-from {}: {} and {} have the same h = {:g}", h_from, r.label, label, run.h));
+    for (const auto& name : metrics)  // a misspelt name stops here; one cgdem may leave out is "not computed"
       if (!io::may_be_left_out(name) || io::has_metric(run.metrics, name))
         io::metric(run.metrics, name, (fs::path(out) / label / "metrics.csv").string());
     runs.push_back(std::move(run));
   }
+  return runs;
+}
 
+// One study per metric over the levels sorted by h (finest first): the triples' orders and
+// extrapolations, and the power-law fit where --exact gives the limit; a metric missing at
+// some level is analysed no further.
+std::vector<MetricStudy> study_metrics(const std::vector<std::string>& metrics, const std::vector<LevelRun>& runs,
+                                       const std::map<std::string, double>& exact) {
   std::vector<size_t> order(runs.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return runs[a].h < runs[b].h; });
   std::vector<MetricStudy> studies;
-  for (const auto& name : o.metrics) {
+  for (const auto& name : metrics) {
     MetricStudy m;
     m.name = name;
     for (size_t i : order) {
@@ -301,18 +288,11 @@ int ConvergeCommand::run() const {
     }
     studies.push_back(std::move(m));
   }
+  return studies;
+}
 
-  const std::string header = fmt::format(
-      "# Convergence study of {}\n\ncgdem {}; `--vary {}`; h from `{}`{}; levels in {}/<key>=<value>/. Per consecutive "
-      "triple of levels (fine h1 < h2 < h3): observed order p from e32/e21 = r21^p (r32^p - 1)/(r21^p - 1), "
-      "Richardson extrapolation f1 + (f1 - f2)/(r21^p - 1), GCI = {} |f1 - f2|/(r21^p - 1) (safety factor Fs = {}); "
-      "see scaling/richardson.hpp and docs/convergence.md. Rows run from coarse to fine; a row's p, extrapolated value "
-      "and GCI are those of the triple whose finest level it is.\n",
-      o.case_file, kGitRevision, o.vary, o.h_from, o.sets.empty() ? "" : fmt::format("; `--set {}`", fmt::join(o.sets, " ")),
-      out, kGciSafetyFactor, kGciSafetyFactor);
-  io::write_file_atomic((fs::path(out) / "converge.csv").string(), csv_text(studies));
-  io::write_file_atomic((fs::path(out) / "converge.md").string(), markdown_text(studies, header));
-
+// The tables and the one-line verdicts on standard output.
+void print_studies(const std::vector<MetricStudy>& studies, const std::string& out) {
   for (const auto& m : studies) {
     fmt::print("\n{:<28} {:>12} {:>18} {:>12} {:>8} {:>8} {:>12} {:>18} {:>11}\n", m.name, "h", "value", "diff", "r", "p",
                "behaviour", "extrapolated", "GCI");
@@ -326,6 +306,50 @@ int ConvergeCommand::run() const {
     if (m.has_exact) fmt::print("{}\n", fit_line(m));
   }
   fmt::print("converge: tables in {}/converge.md and converge.csv\n", out);
+}
+
+}  // namespace
+
+ConvergeCommand::ConvergeCommand(CLI::App& app)
+    : sub_(app.add_subcommand("converge", "refinement study: observed order, Richardson extrapolation, GCI")),
+      o_(std::make_unique<Options>()) {
+  sub_->add_option("case", o_->case_file, "case file (TOML)")->required()->check(CLI::ExistingFile);
+  sub_->add_option("--vary", o_->vary, "key.path=v1,v2,v3[,...]: the levels (at least 3)")->required();
+  sub_->add_option("--metric", o_->metrics, "metric of metrics.csv to analyse (repeatable)")->required();
+  sub_->add_option("--set", o_->sets, "override a key in every run: key.path=value (repeatable)");
+  sub_->add_option("--output", o_->output, "study folder (default out/converge_<case name>)");
+  sub_->add_option("--h-from", o_->h_from, "h of a level: value (default), 1/value, or a metric name");
+  sub_->add_option("--exact", o_->exact, "NAME=VALUE: known limit of a metric, adds a log-log fit (repeatable)");
+  sub_->add_flag("--reuse", o_->reuse, "do not rerun levels whose folder has metrics.csv and the same resolved config");
+  sub_->add_option("--threads", o_->threads, "OpenMP threads")->check(CLI::PositiveNumber);
+}
+
+// The options checked, the levels run, the metrics studied, the report written and printed.
+int ConvergeCommand::run() const {
+  const Options& o = *o_;
+  const Vary vary = parse_vary(o.vary);
+  const auto exact = parse_exact(o.exact, o.metrics);
+  for (const auto& t : vary.texts)
+    if (t.find('/') != std::string::npos) throw Error(fmt::format("--vary {}: level '{}' contains '/'", vary.key, t));
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  const std::string out = o.output.empty() ? "out/converge_" + fs::path(o.case_file).stem().string() : o.output;
+  fs::create_directories(out);
+
+  const std::vector<LevelRun> runs = run_levels(o.case_file, o.sets, vary, o.h_from, o.metrics, out, o.reuse);
+  const std::vector<MetricStudy> studies = study_metrics(o.metrics, runs, exact);
+
+  const std::string header = fmt::format(
+      "# Convergence study of {}\n\ncgdem {}; `--vary {}`; h from `{}`{}; levels in {}/<key>=<value>/. Per consecutive "
+      "triple of levels (fine h1 < h2 < h3): observed order p from e32/e21 = r21^p (r32^p - 1)/(r21^p - 1), "
+      "Richardson extrapolation f1 + (f1 - f2)/(r21^p - 1), GCI = {} |f1 - f2|/(r21^p - 1) (safety factor Fs = {}); "
+      "see scaling/richardson.hpp and docs/convergence.md. Rows run from coarse to fine; a row's p, extrapolated value "
+      "and GCI are those of the triple whose finest level it is.\n",
+      o.case_file, kGitRevision, o.vary, o.h_from, o.sets.empty() ? "" : fmt::format("; `--set {}`", fmt::join(o.sets, " ")),
+      out, kGciSafetyFactor, kGciSafetyFactor);
+  io::write_file_atomic((fs::path(out) / "converge.csv").string(), csv_text(studies));
+  io::write_file_atomic((fs::path(out) / "converge.md").string(), markdown_text(studies, header));
+
+  print_studies(studies, out);
   return 0;
 }
 

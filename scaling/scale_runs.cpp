@@ -13,7 +13,7 @@
 
 #include "app/air_case.hpp"
 #include "app/dem_case.hpp"
-#include "app/die_diagnostics.hpp"
+#include "diagnostics/die_diagnostics.hpp"
 #include "app/flow_case.hpp"
 #include "app/run_command.hpp"
 #include "core/config.hpp"
@@ -136,7 +136,7 @@ StudyInfo read_study_info(const std::string& case_file, const std::vector<std::s
     throw Error(fmt::format("{}: a single-phase flow case ([flow]) has no particles to coarse-grain", case_file));
   const app::DemCase c = app::read_dem_case(cfg);
   const app::AirCase air = app::read_air_case(cfg, c.dem);
-  const app::DiagnosticsSpec diag = app::read_diagnostics(cfg);
+  const diagnostics::DiagnosticsSpec diag = diagnostics::read_diagnostics(cfg);
   s.lo = c.dem.domain.lo;
   s.hi = c.dem.domain.hi;
   s.periodic = {c.dem.periodic[0], c.dem.periodic[1], c.dem.periodic[2]};

@@ -93,26 +93,23 @@ Eigen::MatrixXd field_matrix(const RunPlan& run, const std::vector<Frame>& frame
   return X;
 }
 
-void pod_field(Study& s, const std::string& field, const PodOptions& o) {
-  const bool from_air = s.info.air;
-  const std::string prefix = from_air ? "air" : "particles";
-  const double span = s.info.t_end - s.info.t_start, tol = 1e-6 * span;
-  // Snapshot times present in every run.
-  std::vector<std::vector<Frame>> frames;
-  for (const auto& r : s.runs) frames.push_back(list_frames(r.dir, prefix));
+// The snapshot times of the first run (from t0 on) that every run has, within tol.
+std::vector<double> shared_times(const std::vector<std::vector<Frame>>& frames, size_t runs, double t0, double tol) {
   std::vector<double> times;
   for (const auto& f : frames[0]) {
-    if (f.t < s.t0 - tol) continue;
+    if (f.t < t0 - tol) continue;
     bool everywhere = true;
-    for (size_t r = 1; r < s.runs.size() && everywhere; ++r)
+    for (size_t r = 1; r < runs && everywhere; ++r)
       everywhere = std::any_of(frames[r].begin(), frames[r].end(),
                                [&](const Frame& x) { return std::fabs(x.t - f.t) <= tol; });
     if (everywhere) times.push_back(f.t);
   }
-  if (times.size() < 3) {
-    fmt::print("cgdem scale: POD of {} skipped: only {} snapshot time(s) shared by every run\n", field, times.size());
-    return;
-  }
+  return times;
+}
+
+// The cells of the POD: the air grid of the first snapshot, or (in vacuum) cells of --pod-dx
+// (default twice the largest parcel diameter) over the domain.
+Grid pod_grid(const Study& s, const std::vector<std::vector<Frame>>& frames, bool from_air, const PodOptions& o) {
   Grid g;
   if (from_air) {
     read_cell_field(frames[0].front().file, "eps", &g);
@@ -121,6 +118,22 @@ void pod_field(Study& s, const std::string& field, const PodOptions& o) {
     for (const auto& r : s.runs) dmax = std::max(dmax, r.size * s.info.d_original);
     g = grid_over(s.info.lo, s.info.hi, o.dx > 0 ? o.dx : 2 * dmax, s.info.periodic);
   }
+  return g;
+}
+
+void pod_field(Study& s, const std::string& field, const PodOptions& o) {
+  const bool from_air = s.info.air;
+  const std::string prefix = from_air ? "air" : "particles";
+  const double span = s.info.t_end - s.info.t_start, tol = 1e-6 * span;
+  // Snapshot times present in every run.
+  std::vector<std::vector<Frame>> frames;
+  for (const auto& r : s.runs) frames.push_back(list_frames(r.dir, prefix));
+  const std::vector<double> times = shared_times(frames, s.runs.size(), s.t0, tol);
+  if (times.size() < 3) {
+    fmt::print("cgdem scale: POD of {} skipped: only {} snapshot time(s) shared by every run\n", field, times.size());
+    return;
+  }
+  const Grid g = pod_grid(s, frames, from_air, o);
   PodField p;
   p.field = field;
   p.source = from_air ? "air snapshots (air_*.h5)"

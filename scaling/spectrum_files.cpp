@@ -132,7 +132,8 @@ std::string significance_md(const SpectrumAnalysis& a) {
   return md;
 }
 
-std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
+// The title and the table of the estimate's parameters.
+std::string parameters_md(const SpectrumAnalysis& a) {
   const WelchParams& p = a.params;
   const WindowFactors& w = a.factors;
   const SpectrumSettings& s = a.settings;
@@ -155,11 +156,24 @@ std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
       w.power_gain, w.coherent_gain, w.enbw_bins, num(w.enbw_hz));
   md += fmt::format("| peaks | local maxima from bin {} (f >= {} Hz) above the {:g} % level of AR(1) red noise (below) |\n",
                     lowest_peak_bin(p.window), num(lowest_peak_bin(p.window) * df), 100 * s.confidence);
+  return md;
+}
+
+// One row per run: its source, samples, time range and segments.
+std::string runs_md(const SpectrumAnalysis& a) {
+  std::string md;
   md += "\n| run | source | samples | t first (s) | t last (s) | segments K | coherence bias ~1/K |\n|---|---|---|---|---|---|---|\n";
   for (const auto& r : a.runs)
     md += fmt::format("| {} | `{}` | {} | {} | {} | {} | {:.3f} |\n", r.label, r.source, r.samples, num(r.t_first),
                       num(r.t_last), r.segments, 1.0 / r.segments);
-  md += significance_md(a);
+  return md;
+}
+
+// The significant peaks of every run and cell (or "no significant peak").
+std::string peaks_md(const SpectrumAnalysis& a) {
+  const WelchParams& p = a.params;
+  const SpectrumSettings& s = a.settings;
+  std::string md;
   md += fmt::format("\n## Significant peaks\n\nBand power: sum of PSD df over the {} bins around the maximum; "
                     "ratio: PSD over the {:g} % level at the bin.\n\n",
                     2 * main_lobe_half_width(p.window) + 1, 100 * s.confidence);
@@ -178,6 +192,12 @@ std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
                           r.variance[c] > 0 ? 100 * pk.band_power / r.variance[c] : 0.0, r.variance[c]);
       }
     }
+  return md;
+}
+
+// Per run and pair of cells: the largest coherence, its frequency and the mean over f > 0.
+std::string coherence_md(const SpectrumAnalysis& a) {
+  std::string md;
   md += "\n## Coherence\n\n| run | cells | largest | at f (Hz) | mean over f > 0 |\n|---|---|---|---|---|\n";
   for (const auto& r : a.runs)
     for (size_t q = 0; q < r.pairs.size(); ++q) {
@@ -194,6 +214,14 @@ std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
       md += fmt::format("| {} | {}-{} | {:.3f} | {:.6g} | {:.3f} |\n", r.label, r.cells[r.pairs[q].first],
                         r.cells[r.pairs[q].second], c[best], a.f[best], n ? mean / n : NAN);
     }
+  return md;
+}
+
+std::string markdown(const SpectrumAnalysis& a, const std::string& png_note) {
+  std::string md = parameters_md(a) + runs_md(a);
+  md += significance_md(a);
+  md += peaks_md(a);
+  md += coherence_md(a);
   md += fmt::format("\nFiles: `psd.csv`, `background.csv`, `coherence.csv`, `peaks.csv`{}\n", png_note);
   return md;
 }

@@ -84,8 +84,12 @@ SpectrumAnalysis analyse_runs(const std::vector<std::string>& run_dirs, const st
   return analyse_series(std::move(read), labels, s);
 }
 
-SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vector<std::string>& labels,
-                                const SpectrumSettings& s) {
+namespace {
+
+// The settings and the series' labels checked (one label per series, overlap in [0, 1), at
+// least one peak, confidence in (0, 1)).
+void check_settings(const std::vector<PressureSeries>& read, const std::vector<std::string>& labels,
+                    const SpectrumSettings& s) {
   if (read.empty()) throw Error("spectrum: no run given");
   if (labels.size() != read.size())
     throw Error(fmt::format("spectrum: {} label(s) for {} series", labels.size(), read.size()));
@@ -93,10 +97,15 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
   if (s.peaks < 1) throw Error(fmt::format("--peaks: {} (at least 1)", s.peaks));
   if (!(s.confidence > 0 && s.confidence < 1))
     throw Error(fmt::format("--confidence: {} is not in (0, 1) (e.g. 0.95)", s.confidence));
+}
 
-  // Series: selected range and cells, on a uniform grid (checked, or resampled onto --dt).
+// The series over the selected range and cells (those of the first run unless --cells gives
+// them), on a uniform grid: checked (all runs at one interval), or resampled onto --dt.
+// Writes each run's own sampling interval into dt_data; returns the series and their dt.
+std::pair<std::vector<PressureSeries>, double> uniform_series(std::vector<PressureSeries>& read,
+                                                              const std::vector<std::string>& labels,
+                                                              const SpectrumSettings& s, std::vector<double>& dt_data) {
   std::vector<PressureSeries> series;
-  std::vector<double> dt_data;
   std::vector<std::string> cells = s.cells;
   for (PressureSeries& whole : read) {
     PressureSeries raw = select(whole, cells, s.from, s.to);
@@ -110,6 +119,58 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
       throw Error(fmt::format("spectrum: the runs are sampled at different intervals ({}: {} s, {}: {} s); resample "
                               "them onto one with --dt",
                               labels[0], dt, labels[r], dt_data[r]));
+  return {std::move(series), dt};
+}
+
+// The spectra of one run's series: per cell the Welch PSD, its variance, the red-noise
+// background and the significance levels, the significant peaks; per pair of cells the
+// coherence.
+RunSpectrum run_spectrum(const PressureSeries& ser, const std::string& label, double dt_data, const Welch& welch,
+                         const SpectrumAnalysis& a, const SpectrumSettings& s) {
+  RunSpectrum rs;
+  rs.label = label;
+  rs.source = ser.source;
+  rs.t_first = ser.t.front();
+  rs.t_last = ser.t.back();
+  rs.dt_data = dt_data;
+  rs.samples = ser.t.size();
+  rs.segments = welch.segments(rs.samples);
+  rs.cells = ser.cells;
+  rs.dof = welch_dof(window_coefficients(a.params.window, a.params.segment), a.params.overlap, rs.segments);
+  for (const auto& p : ser.p) {
+    rs.psd.push_back(welch.psd(p));
+    rs.variance.push_back(integrate(rs.psd.back(), welch.df()));
+    // The red-noise background of this series and its level (spectrum_significance.hpp).
+    rs.ar1.push_back(fit_ar1(p, s.detrend));
+    rs.background.push_back(ar1_spectrum(rs.ar1.back(), a.f, a.params.fs));
+    rs.tested_bins = welch.bins() - lowest_peak_bin(s.window);
+    rs.bin_confidence = s.pointwise ? s.confidence : global_confidence(s.confidence, rs.tested_bins);
+    rs.pointwise_level.push_back(significance_level(rs.background.back(), rs.dof, s.confidence, a.params.segment));
+    rs.global_level.push_back(significance_level(rs.background.back(), rs.dof,
+                                                 global_confidence(s.confidence, rs.tested_bins), a.params.segment));
+    rs.level.push_back(s.pointwise ? rs.pointwise_level.back() : rs.global_level.back());
+    Peak largest;
+    rs.peaks.push_back(significant_peaks(rs.psd.back(), rs.background.back(), rs.level.back(), welch.df(),
+                                         main_lobe_half_width(s.window), s.peaks, &largest));
+    rs.largest.push_back(largest);
+  }
+  for (int i = 0; i < static_cast<int>(ser.p.size()); ++i)
+    for (int j = i + 1; j < static_cast<int>(ser.p.size()); ++j) {
+      rs.pairs.emplace_back(i, j);
+      rs.coherence.push_back(coherence(rs.psd[i], rs.psd[j], welch.csd(ser.p[i], ser.p[j])));
+    }
+  return rs;
+}
+
+}  // namespace
+
+// The steps above, then the Welch parameters from the shortest series.
+SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vector<std::string>& labels,
+                                const SpectrumSettings& s) {
+  check_settings(read, labels, s);
+  // Series: selected range and cells, on a uniform grid (checked, or resampled onto --dt).
+  std::vector<double> dt_data;
+  auto [series, dt] = uniform_series(read, labels, s, dt_data);
 
   size_t n_min = series[0].t.size();
   for (const auto& ser : series) n_min = std::min(n_min, ser.t.size());
@@ -124,42 +185,8 @@ SpectrumAnalysis analyse_series(std::vector<PressureSeries> read, const std::vec
   a.factors = welch.factors();
   a.f = welch.frequencies();
 
-  for (size_t r = 0; r < series.size(); ++r) {
-    const PressureSeries& ser = series[r];
-    RunSpectrum rs;
-    rs.label = labels[r];
-    rs.source = ser.source;
-    rs.t_first = ser.t.front();
-    rs.t_last = ser.t.back();
-    rs.dt_data = dt_data[r];
-    rs.samples = ser.t.size();
-    rs.segments = welch.segments(rs.samples);
-    rs.cells = ser.cells;
-    rs.dof = welch_dof(window_coefficients(a.params.window, a.params.segment), a.params.overlap, rs.segments);
-    for (const auto& p : ser.p) {
-      rs.psd.push_back(welch.psd(p));
-      rs.variance.push_back(integrate(rs.psd.back(), welch.df()));
-      // The red-noise background of this series and its level (spectrum_significance.hpp).
-      rs.ar1.push_back(fit_ar1(p, s.detrend));
-      rs.background.push_back(ar1_spectrum(rs.ar1.back(), a.f, a.params.fs));
-      rs.tested_bins = welch.bins() - lowest_peak_bin(s.window);
-      rs.bin_confidence = s.pointwise ? s.confidence : global_confidence(s.confidence, rs.tested_bins);
-      rs.pointwise_level.push_back(significance_level(rs.background.back(), rs.dof, s.confidence, a.params.segment));
-      rs.global_level.push_back(significance_level(rs.background.back(), rs.dof,
-                                                   global_confidence(s.confidence, rs.tested_bins), a.params.segment));
-      rs.level.push_back(s.pointwise ? rs.pointwise_level.back() : rs.global_level.back());
-      Peak largest;
-      rs.peaks.push_back(significant_peaks(rs.psd.back(), rs.background.back(), rs.level.back(), welch.df(),
-                                           main_lobe_half_width(s.window), s.peaks, &largest));
-      rs.largest.push_back(largest);
-    }
-    for (int i = 0; i < static_cast<int>(ser.p.size()); ++i)
-      for (int j = i + 1; j < static_cast<int>(ser.p.size()); ++j) {
-        rs.pairs.emplace_back(i, j);
-        rs.coherence.push_back(coherence(rs.psd[i], rs.psd[j], welch.csd(ser.p[i], ser.p[j])));
-      }
-    a.runs.push_back(std::move(rs));
-  }
+  for (size_t r = 0; r < series.size(); ++r)
+    a.runs.push_back(run_spectrum(series[r], labels[r], dt_data[r], welch, a, s));
   return a;
 }
 

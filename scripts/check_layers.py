@@ -11,13 +11,16 @@ The layers, lowest first (a file may include its own folder and any lower rank):
     2  src/particles, src/contact   (one module, cgdem_dem's building blocks: they may
                                     include each other)
     3  src/fluid
-    4  src/coupling
+    4  src/coupling, src/diagnostics
+                                   (the drag and exchange between parcels and air; the
+                                    observables of a run, such as the die-filling
+                                    diagnostics: neither includes the other)
     5  src/parallel                 (decomposition, migration, and the MPI exchanges)
     6  solvers/*                    (everything that advances time; any solvers/ folder
                                     may include another, the graph between them must be
                                     acyclic)
-    7  src/app                      (case readers, the phases and outputs of a run,
-                                    diagnostics of a run; the run driver is solvers/run)
+    7  src/app                      (case readers, the phases and outputs of a run; the
+                                    run driver is solvers/run)
     8  scaling, bench               (analysis commands and benchmarks; neither includes
                                     the other)
     9  src/app/main.cpp             (the command line: may include everything)
@@ -35,7 +38,7 @@ RANK = {
     "src/geometry": 1, "src/io": 1,
     "src/particles": 2, "src/contact": 2,
     "src/fluid": 3,
-    "src/coupling": 4,
+    "src/coupling": 4, "src/diagnostics": 4,
     "src/parallel": 5,
     "solvers": 6,
     "src/app": 7,

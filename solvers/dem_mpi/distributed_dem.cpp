@@ -32,6 +32,26 @@ bool same_values(const contact::History& a, const contact::History& b) {
          a.ft.z == b.ft.z && a.s1 == b.s1 && a.s2 == b.s2;
 }
 
+// A pair's record can reach this rank twice (from each of its two ranks, when a parcel
+// moved to its partner's rank): keeps one, the records ordered by their ids (stably). The two
+// are equal when the two ranks evaluated the pair alike: counts the repeats and those whose
+// values differ.
+void keep_one_record_per_pair(std::vector<CarriedPair>& rec, long& twice, long& differing) {
+  std::stable_sort(rec.begin(), rec.end(), [](const CarriedPair& a, const CarriedPair& b) {
+    return a.id_a != b.id_a ? a.id_a < b.id_a : a.id_b < b.id_b;
+  });
+  size_t w = 0;
+  for (size_t r = 0; r < rec.size(); ++r) {
+    if (w > 0 && rec[w - 1].id_a == rec[r].id_a && rec[w - 1].id_b == rec[r].id_b) {
+      ++twice;
+      differing += !same_values(rec[w - 1].h, rec[r].h);
+      continue;
+    }
+    rec[w++] = rec[r];
+  }
+  rec.resize(w);
+}
+
 }  // namespace
 
 DistributedDem::DistributedDem(MPI_Comm comm, const Decomposition& d, DemSolver& dem)
@@ -151,31 +171,18 @@ void DistributedDem::rebuild(Particles& p, NeighborList& nl, const geometry::Sce
     nl.retain(keep, n_ghosts);
     nl.ghosts = n_ghosts;
     counters_.ghosts_received = static_cast<long>(n_ghosts);
-    // A pair's record can reach this rank twice (from each of its two ranks, when a
-    // parcel moved to its partner's rank): keep one. The two are equal when the two
-    // ranks evaluated the pair alike, which is counted.
-    auto& rec = nl.incoming.pairs;
-    std::stable_sort(rec.begin(), rec.end(), [](const CarriedPair& a, const CarriedPair& b) {
-      return a.id_a != b.id_a ? a.id_a < b.id_a : a.id_b < b.id_b;
-    });
-    size_t w = 0;
-    for (size_t r = 0; r < rec.size(); ++r) {
-      if (w > 0 && rec[w - 1].id_a == rec[r].id_a && rec[w - 1].id_b == rec[r].id_b) {
-        ++counters_.records_twice;
-        counters_.records_differing += !same_values(rec[w - 1].h, rec[r].h);
-        continue;
-      }
-      rec[w++] = rec[r];
-    }
-    rec.resize(w);
+    keep_one_record_per_pair(nl.incoming.pairs, counters_.records_twice, counters_.records_differing);
     nl.build(p, walls);
   } catch (const Error& e) {
     error = e.what();
   }
   raise_together(comm_, rank_, error, kWhat);
 
-  // 4. The build sorted the owned parcels: find the ones each neighbour holds again (the
-  //    same positions and range give the same parcels, in the same id order).
+  // 4. The build sorted the owned parcels: find the ones each neighbour holds again.
+  reselect_ghosts(p, n_owned);
+}
+
+void DistributedDem::reselect_ghosts(const Particles& p, size_t n_owned) {
   std::vector<size_t> sent(nb_.size());
   for (size_t k = 0; k < nb_.size(); ++k) sent[k] = send_[k].size();
   select_ghosts(p, n_owned);

@@ -79,6 +79,10 @@ class DistributedDem final : public DomainExchange {
  private:
   // Owned parcels within the interaction range of each neighbour's block, in id order.
   void select_ghosts(const Particles& p, size_t n_owned);
+  // After the build (which sorted the owned parcels): the ghosts each neighbour holds found
+  // again (the same positions and range give the same parcels, in the same id order; a
+  // different count is an error), and the buffers of refresh_ghosts() sized.
+  void reselect_ghosts(const Particles& p, size_t n_owned);
 
   MPI_Comm comm_;
   Decomposition d_;

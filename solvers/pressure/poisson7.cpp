@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "solvers/pressure/stencil_rows.hpp"
 #include "solvers/pressure/union_find.hpp"
 
 namespace cgdem::pressure {
@@ -22,6 +23,16 @@ void check_size(const std::vector<double>& a, long want, const char* name) {
   for (double v : a)
     if (!(v >= 0.0) || !std::isfinite(v))
       throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
+}
+
+// True when a and b have the same size and the same faces (or cells) with a value > 0.
+bool same_sign_pattern(const std::vector<double>& a, const std::vector<double>& b, bool par) {
+  if (a.size() != b.size()) return false;
+  const long m = static_cast<long>(a.size());
+  bool eq = true;
+#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
+  for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
+  return eq;
 }
 
 }  // namespace
@@ -61,7 +72,6 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   ax_ = ax;
   ay_ = ay;
   az_ = az;
-  const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy), hz = 1 / (g_.dz * g_.dz);
   // The previous weights decide whether the connectivity (which faces have w > 0) changed.
   const bool had = !comp_.empty();
   std::vector<double> old_x, old_y, old_z, old_open;
@@ -71,12 +81,30 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   wz_.assign(az.size(), 0.0);
   diag_.assign(n(), 0.0);
   open_.assign(n(), 0.0);
-  const bool px = periodic(0), py = periodic(1), pz = periodic(2);
-  const auto& bc = g_.bc;
   const bool par = n() >= kParallelMin;
   // Every cell sums its faces in the same order as a serial sweep x, y, z (face index
   // ascending): x and y faces touch one k plane (parallel over k), z faces one (i, j) column
   // (parallel over j), so the sums are those of the serial loops.
+  add_xy_faces(ax, ay);
+  add_z_faces(az);
+  const long N = n();
+#pragma omp parallel for schedule(static) if (par)
+  for (long c = 0; c < N; ++c) diag_[c] += open_[c];
+  // Same pattern of positive weights: the components (and floating cells) are unchanged.
+  if (had && same_sign_pattern(old_x, wx_, par) && same_sign_pattern(old_y, wy_, par) &&
+      same_sign_pattern(old_z, wz_, par) && same_sign_pattern(old_open, open_, par))
+    return;
+  label_components();
+}
+
+// x faces: interior, periodic wrap (face 0) or boundary (Open sides into open_); y faces
+// likewise; one k plane per iteration of the parallel loop.
+void Poisson7::add_xy_faces(const std::vector<double>& ax, const std::vector<double>& ay) {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const double hx = 1 / (g_.dx * g_.dx), hy = 1 / (g_.dy * g_.dy);
+  const bool px = periodic(0), py = periodic(1);
+  const auto& bc = g_.bc;
+  const bool par = n() >= kParallelMin;
 #pragma omp parallel for schedule(static) if (par)
   for (int k = 0; k < nz; ++k) {
     for (int j = 0; j < ny; ++j) {
@@ -101,6 +129,15 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (j == ny && bc[3] == Boundary::Open) open_[cs] += 2 * w;
       }
   }
+}
+
+// z faces, likewise; one (i, j) column per iteration of the parallel loop (over j).
+void Poisson7::add_z_faces(const std::vector<double>& az) {
+  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  const double hz = 1 / (g_.dz * g_.dz);
+  const bool pz = periodic(2);
+  const auto& bc = g_.bc;
+  const bool par = n() >= kParallelMin;
   const long plane = long(nx) * ny;
 #pragma omp parallel for schedule(static) if (par)
   for (int j = 0; j < ny; ++j)
@@ -114,20 +151,6 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
         else if (k == 0 && bc[4] == Boundary::Open) open_[ct] += 2 * w;
         else if (k == nz && bc[5] == Boundary::Open) open_[cb] += 2 * w;
       }
-  const long N = n();
-#pragma omp parallel for schedule(static) if (par)
-  for (long c = 0; c < N; ++c) diag_[c] += open_[c];
-  // Same pattern of positive weights: the components (and floating cells) are unchanged.
-  auto same = [par](const std::vector<double>& a, const std::vector<double>& b) {
-    if (a.size() != b.size()) return false;
-    const long m = static_cast<long>(a.size());
-    bool eq = true;
-#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
-    for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
-    return eq;
-  };
-  if (had && same(old_x, wx_) && same(old_y, wy_) && same(old_z, wz_) && same(old_open, open_)) return;
-  label_components();
 }
 
 void Poisson7::label_components() {
@@ -232,21 +255,14 @@ void Poisson7::gauss_seidel_pair(const double* b, double* x, int first) const {
 void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
-  const long plane = long(nx) * ny;
     {
       const long c0 = long(nx) * (j + long(ny) * k);
       double* xr = x + c0;
       const double* br = b + c0;
       const double* d = diag_.data() + c0;
       const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
-      const double* xs = (j > 0) ? xr - nx : (py ? xr + long(nx) * (ny - 1) : xr);
-      const double* xn = (j < ny - 1) ? xr + nx : (py ? xr - long(nx) * (ny - 1) : xr);
-      const double* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-      const double* wn = wy_.data() + long(nx) * ((j == ny - 1 && py ? 0 : j + 1) + long(ny + 1) * k);
-      const double* xb = (k > 0) ? xr - plane : (pz ? xr + plane * (nz - 1) : xr);
-      const double* xt = (k < nz - 1) ? xr + plane : (pz ? xr - plane * (nz - 1) : xr);
-      const double* wb = wz_.data() + c0;
-      const double* wt = wz_.data() + (k == nz - 1 && pz ? long(nx) * j : c0 + plane);
+      const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+          row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
       // A periodic axis of odd length breaks the colouring at the wrap; the sweep stays a
       // fixed, thread-independent sequence but is then only approximately red-black.
       for (int i = (j + k + color) & 1; i < nx; i += 2) {
@@ -273,14 +289,8 @@ void Poisson7::apply_rows(const double* x, double* y, const double* b, double* r
       const double* d = diag_.data() + c0;
       const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
       // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
-      const double* xs = (j > 0) ? xr - nx : (py ? xr + long(nx) * (ny - 1) : xr);
-      const double* xn = (j < ny - 1) ? xr + nx : (py ? xr - long(nx) * (ny - 1) : xr);
-      const double* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-      const double* wn = wy_.data() + long(nx) * ((j == ny - 1 && py ? 0 : j + 1) + long(ny + 1) * k);
-      const double* xb = (k > 0) ? xr - plane : (pz ? xr + plane * (nz - 1) : xr);
-      const double* xt = (k < nz - 1) ? xr + plane : (pz ? xr - plane * (nz - 1) : xr);
-      const double* wb = wz_.data() + c0;
-      const double* wt = wz_.data() + (k == nz - 1 && pz ? long(nx) * j : c0 + plane);
+      const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+          row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
       for (int i = 0; i < nx; ++i)
         yr[i] = d[i] * xr[i] - ws[i] * xs[i] - wn[i] * xn[i] - wb[i] * xb[i] - wt[i] * xt[i];
       for (int i = 1; i < nx; ++i) yr[i] -= wxr[i] * xr[i - 1];

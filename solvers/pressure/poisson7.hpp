@@ -66,6 +66,10 @@ class Poisson7 {
   bool periodic(int axis) const { return g_.bc[2 * axis] == Boundary::Periodic; }
 
  private:
+  // The steps of set(): the weights of the x and y faces, then of the z faces (writes
+  // wx_, wy_, wz_; adds to diag_ and open_, zeroed before; see set() for the order of sums).
+  void add_xy_faces(const std::vector<double>& ax, const std::vector<double>& ay);
+  void add_z_faces(const std::vector<double>& az);
   void label_components();
   template <bool kResidual>
   void apply_rows(const double* x, double* y, const double* b, double* row_dot = nullptr) const;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/pressure/stencil_rows.hpp"
+
 namespace cgdem::pressure {
 
 double stencil32_scale(const Poisson7& op) {
@@ -57,7 +59,6 @@ __attribute__((target_clones("avx2", "default"))) void gs_interior(
 // kZeroFirst: x = 0 on entry, so x_c = b_c / D_c without reading neighbours.
 void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
-  const long plane = long(nx) * ny;
   const long c0 = long(nx) * (j + long(ny) * k);
   float* xr = x + c0;
   const float* br = b + c0;
@@ -68,14 +69,8 @@ void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode m
     return;
   }
   const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
-  const float* xs = (j > 0) ? xr - nx : (py_ ? xr + long(nx) * (ny - 1) : xr);
-  const float* xn = (j < ny - 1) ? xr + nx : (py_ ? xr - long(nx) * (ny - 1) : xr);
-  const float* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-  const float* wn = wy_.data() + long(nx) * ((j == ny - 1 && py_ ? 0 : j + 1) + long(ny + 1) * k);
-  const float* xb = (k > 0) ? xr - plane : (pz_ ? xr + plane * (nz - 1) : xr);
-  const float* xt = (k < nz - 1) ? xr + plane : (pz_ ? xr - plane * (nz - 1) : xr);
-  const float* wb = wz_.data() + c0;
-  const float* wt = wz_.data() + (k == nz - 1 && pz_ ? long(nx) * j : c0 + plane);
+  const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+      row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
   auto edge = [&](int i) {  // i = 0 or nx - 1: the x neighbours may wrap or be absent
     float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
     if (i > 0) s += wxr[i] * xr[i - 1]; else if (px_) s += wxr[0] * xr[nx - 1];
@@ -131,20 +126,13 @@ void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) co
 // r = b - A x on row (j, k) (the arithmetic of Poisson7::apply_rows, in float).
 void Stencil32::residual_row(const float* b, const float* x, int j, int k, float* r) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
-  const long plane = long(nx) * ny;
   const long c0 = long(nx) * (j + long(ny) * k);
   const float* xr = x + c0;
   const float* br = b + c0;
   const float* d = d_.data() + c0;
   const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
-  const float* xs = (j > 0) ? xr - nx : (py_ ? xr + long(nx) * (ny - 1) : xr);
-  const float* xn = (j < ny - 1) ? xr + nx : (py_ ? xr - long(nx) * (ny - 1) : xr);
-  const float* ws = wy_.data() + long(nx) * (j + long(ny + 1) * k);
-  const float* wn = wy_.data() + long(nx) * ((j == ny - 1 && py_ ? 0 : j + 1) + long(ny + 1) * k);
-  const float* xb = (k > 0) ? xr - plane : (pz_ ? xr + plane * (nz - 1) : xr);
-  const float* xt = (k < nz - 1) ? xr + plane : (pz_ ? xr - plane * (nz - 1) : xr);
-  const float* wb = wz_.data() + c0;
-  const float* wt = wz_.data() + (k == nz - 1 && pz_ ? long(nx) * j : c0 + plane);
+  const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+      row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
   for (int i = 0; i < nx; ++i)
     r[i] = br[i] - d[i] * xr[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
   for (int i = 1; i < nx; ++i) r[i] += wxr[i] * xr[i - 1];

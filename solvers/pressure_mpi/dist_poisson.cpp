@@ -55,6 +55,154 @@ long side_face(const std::array<int, 3>& e, int side, long cell) {
   return c[0] + f[0] * (c[1] + f[1] * c[2]);
 }
 
+// Why the face coefficient arrays of set() are refused (a size other than the block's faces,
+// a value negative or not finite), or "" when they are fine.
+std::string coefficient_error(const std::array<int, 3>& e, const std::vector<double>* const (&in)[3]) {
+  std::string why;
+  for (int a = 0; a < 3; ++a) {
+    if (long(in[a]->size()) != face_count(e, a))
+      return fmt::format("face coefficient array a{} has {} entries, expected {}", "xyz"[a], in[a]->size(),
+                         face_count(e, a));
+    for (double v : *in[a])
+      if (!(v >= 0.0) || !std::isfinite(v)) why = fmt::format("face coefficient a{} must be finite and >= 0", "xyz"[a]);
+  }
+  return why;
+}
+
+// The steps of DistPoisson::label_components (see dist_poisson.hpp).
+
+// Step 1: the components of a block through its own faces with w > 0 (union-find, the
+// smallest cell of a component its root).
+struct BlockComponents {
+  std::vector<long> root;     // per cell: the root of its component
+  std::vector<char> grounded;  // per root: a cell of the component has an Open face
+  std::vector<char> at_cut;    // per root: the component reaches a cut by a face with w > 0 (step 2)
+  std::vector<double> count;   // per root: the component's cells
+};
+
+BlockComponents block_components(const std::array<int, 3>& e, const std::vector<double> (&w)[3],
+                                 const std::vector<double>& open) {
+  const int nx = e[0], ny = e[1], nz = e[2];
+  const long n = long(nx) * ny * nz;
+  std::vector<long> parent(n);
+  std::iota(parent.begin(), parent.end(), 0L);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const long c = i + long(nx) * (j + long(ny) * k);
+        if (i > 0 && w[0][i + long(nx + 1) * (j + long(ny) * k)] > 0) unite(parent, c, c - 1);
+        if (j > 0 && w[1][i + long(nx) * (j + long(ny + 1) * k)] > 0) unite(parent, c, c - nx);
+        if (k > 0 && w[2][c] > 0) unite(parent, c, c - long(nx) * ny);
+      }
+  BlockComponents b;
+  b.root.resize(n);
+  for (long c = 0; c < n; ++c) b.root[c] = find_root(parent, c);
+  b.grounded.assign(n, 0);
+  b.at_cut.assign(n, 0);
+  b.count.assign(n, 0.0);
+  for (long c = 0; c < n; ++c) {
+    if (open[c] > 0) b.grounded[b.root[c]] = 1;
+    b.count[b.root[c]] += 1;
+  }
+  return b;
+}
+
+// Global id of a local cell: the global index of the cell (unique over the ranks, exact in
+// a double for any grid this code can hold).
+struct GlobalIds {
+  std::array<int, 3> e, lo, gn;
+  long operator()(long c) const {
+    const long i = c % e[0], j = (c / e[0]) % e[1], k = c / (long(e[0]) * e[1]);
+    return (lo[0] + i) + long(gn[0]) * ((lo[1] + j) + long(gn[1]) * (lo[2] + k));
+  }
+};
+
+// Step 2: the labels (root ids) of the cells next to each cut, exchanged with the neighbours;
+// marks b.at_cut for the roots joined to a cut through a face with w > 0 and returns the
+// pairs (own root id, neighbour's root id) of those faces on the upper sides.
+std::vector<long> cut_edges(MPI_Comm comm, const GridBlocks& blocks, const std::array<int, 3>& e,
+                            const std::vector<double> (&wf)[3], const GlobalIds& gid, BlockComponents& b) {
+  std::vector<long> edges;
+  std::vector<double> out[6], in[6];
+  MPI_Request rq[12];
+  int nr = 0;
+  for (int s = 0; s < 6; ++s) {
+    const int nb = blocks.neighbour(s);
+    if (nb < 0) continue;
+    in[s].resize(layer_count(e, s / 2));
+    MPI_Irecv(in[s].data(), int(in[s].size()), MPI_DOUBLE, nb, kTagLabel + (s ^ 1), comm, &rq[nr++]);
+    out[s].resize(in[s].size());
+    for_layer(e, s, [&](long q, long c) { out[s][q] = double(gid(b.root[c])); });
+    MPI_Isend(out[s].data(), int(out[s].size()), MPI_DOUBLE, nb, kTagLabel + s, comm, &rq[nr++]);
+  }
+  MPI_Waitall(nr, rq, MPI_STATUSES_IGNORE);
+  for (int s = 0; s < 6; ++s) {
+    if (!blocks.is_cut(s)) continue;
+    const double* w = wf[s / 2].data();
+    for_layer(e, s, [&](long q, long c) {
+      if (!(w[side_face(e, s, c)] > 0)) return;
+      b.at_cut[b.root[c]] = 1;
+      if (s % 2) edges.insert(edges.end(), {gid(b.root[c]), long(in[s][q])});
+    });
+  }
+  return edges;
+}
+
+// Every rank's `mine`, concatenated in rank order, on every rank.
+std::vector<long> gather_all(MPI_Comm comm, const std::vector<long>& mine) {
+  int size = 0;
+  MPI_Comm_size(comm, &size);
+  int m = int(mine.size());
+  std::vector<int> counts(size), displ(size, 0);
+  MPI_Allgather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) displ[r] = displ[r - 1] + counts[r - 1];
+  std::vector<long> all(displ[size - 1] + counts[size - 1]);
+  MPI_Allgatherv(mine.data(), m, MPI_LONG, all.data(), counts.data(), displ.data(), MPI_LONG, comm);
+  return all;
+}
+
+// Step 4: the components that touch a cut (records (id, grounded, count) of every rank) joined
+// through the cut edges the same way on every rank: ids sorted, the smallest id the root.
+struct CrossComponents {
+  std::vector<long> sorted;         // the records' ids, ascending
+  std::vector<long> parent;         // union-find over the indices of `sorted`
+  std::vector<int> cross_id;        // per root index: its number among the floating ones, or -1
+  std::vector<double> cross_count;  // per floating one: its cells over all ranks
+  long index_of(long id) const {
+    return long(std::lower_bound(sorted.begin(), sorted.end(), id) - sorted.begin());
+  }
+};
+
+CrossComponents join_cross(const std::vector<long>& all_rec, const std::vector<long>& all_edges) {
+  CrossComponents x;
+  const long nrec = long(all_rec.size()) / 3;
+  std::vector<long> ids(nrec);
+  for (long r = 0; r < nrec; ++r) ids[r] = all_rec[3 * r];
+  std::vector<long> order(nrec);
+  std::iota(order.begin(), order.end(), 0L);
+  std::sort(order.begin(), order.end(), [&](long p, long q) { return ids[p] < ids[q]; });
+  x.sorted.resize(nrec);
+  for (long r = 0; r < nrec; ++r) x.sorted[r] = ids[order[r]];
+  x.parent.resize(nrec);
+  std::iota(x.parent.begin(), x.parent.end(), 0L);
+  for (size_t q = 0; q + 1 < all_edges.size(); q += 2)
+    unite(x.parent, x.index_of(all_edges[q]), x.index_of(all_edges[q + 1]));
+  std::vector<char> g_grounded(nrec, 0);
+  std::vector<double> g_count(nrec, 0.0);
+  for (long r = 0; r < nrec; ++r) {
+    const long i = x.index_of(ids[r]), top = find_root(x.parent, i);
+    if (all_rec[3 * r + 1]) g_grounded[top] = 1;
+    g_count[top] += double(all_rec[3 * r + 2]);
+  }
+  x.cross_id.assign(nrec, -1);
+  for (long i = 0; i < nrec; ++i)
+    if (find_root(x.parent, i) == i && !g_grounded[i]) {
+      x.cross_id[i] = int(x.cross_count.size());
+      x.cross_count.push_back(g_count[i]);
+    }
+  return x;
+}
+
 
 }  // namespace
 
@@ -88,32 +236,27 @@ pressure::GridSpec DistPoisson::local_spec(Boundary cut) const {
   return g;
 }
 
+// Checks on every rank (a bad array anywhere stops all of them), then the steps above.
 void DistPoisson::set(const std::vector<double>& ax, const std::vector<double>& ay, const std::vector<double>& az) {
   const std::array<int, 3> e{nx_, ny_, nz_};
   const std::vector<double>* in[3] = {&ax, &ay, &az};
-  bool ok = true;
-  std::string why;
-  for (int a = 0; a < 3; ++a) {
-    if (long(in[a]->size()) != face_count(e, a)) {
-      ok = false;
-      why = fmt::format("face coefficient array a{} has {} entries, expected {}", "xyz"[a], in[a]->size(),
-                        face_count(e, a));
-      break;
-    }
-    for (double v : *in[a])
-      if (!(v >= 0.0) || !std::isfinite(v)) {
-        ok = false;
-        why = fmt::format("face coefficient a{} must be finite and >= 0", "xyz"[a]);
-      }
-  }
+  const std::string why = coefficient_error(e, in);
+  const bool ok = why.empty();
   // Bad input on one rank stops every rank (no one is left waiting in the exchange below).
   int all_ok = ok ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &all_ok, 1, MPI_INT, MPI_LAND, comm_);
   if (!ok) throw Error("air pressure: " + why);
   if (!all_ok) throw Error("air pressure: bad face coefficients on another rank");
   for (int a = 0; a < 3; ++a) a_[a] = *in[a];
+  sync_cut_faces();
+  assemble_weights();
+  label_components();
+}
 
-  // The cut face belongs to the upper block: it sends its face-0 layer down.
+// The cut face belongs to the upper block: it sends its face-0 layer down, and the lower
+// block's copy (its face n) is overwritten with it.
+void DistPoisson::sync_cut_faces() {
+  const std::array<int, 3> e{nx_, ny_, nz_};
   for (int a = 0; a < 3; ++a) {
     const int lo = blocks_.neighbour(2 * a), hi = blocks_.neighbour(2 * a + 1);
     std::vector<double> out, back;
@@ -131,8 +274,11 @@ void DistPoisson::set(const std::vector<double>& ax, const std::vector<double>& 
     MPI_Waitall(nr, rq, MPI_STATUSES_IGNORE);
     if (hi >= 0) for_layer(e, 2 * a + 1, [&](long q, long c) { a_[a][side_face(e, 2 * a + 1, c)] = back[q]; });
   }
+}
 
-  // Weights: interior and cut faces couple two cells; physical faces add the Open term.
+// Weights: interior and cut faces couple two cells; physical faces add the Open term. Every
+// cell sums its faces in the order x, y, z, face index ascending.
+void DistPoisson::assemble_weights() {
   const double h2[3] = {1 / (global_.dx * global_.dx), 1 / (global_.dy * global_.dy), 1 / (global_.dz * global_.dz)};
   diag_.assign(n_, 0.0);
   open_.assign(n_, 0.0);
@@ -165,7 +311,6 @@ void DistPoisson::set(const std::vector<double>& ax, const std::vector<double>& 
         }
   }
   for (long c = 0; c < n_; ++c) diag_[c] += open_[c];
-  label_components();
 }
 
 // Starts the exchange of the cell layers next to the cut sides (received into hr_).
@@ -235,104 +380,26 @@ void DistPoisson::apply(const double* x, double* y) {
   }
 }
 
+// Reads w_, open_ and the neighbours' labels; writes comp_, local_count_, cross_count_,
+// isolated_, floating_cells_, n_floating_, singular_ and sizes local_sum_, cross_sum_. The
+// labels do not depend on the order of the unions (union_find.hpp), so every rank joins the
+// gathered components identically.
 void DistPoisson::label_components() {
   const std::array<int, 3> e{nx_, ny_, nz_};
-  const auto& gn = blocks_.global_cells();
-  const auto& lo = blocks_.lo();
+  const GlobalIds gid{e, blocks_.lo(), blocks_.global_cells()};
   // 1. Components of the block through its own faces.
-  std::vector<long> parent(n_);
-  std::iota(parent.begin(), parent.end(), 0L);
-  for (int k = 0; k < nz_; ++k)
-    for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i) {
-        const long c = i + long(nx_) * (j + long(ny_) * k);
-        if (i > 0 && w_[0][i + long(nx_ + 1) * (j + long(ny_) * k)] > 0) unite(parent, c, c - 1);
-        if (j > 0 && w_[1][i + long(nx_) * (j + long(ny_ + 1) * k)] > 0) unite(parent, c, c - nx_);
-        if (k > 0 && w_[2][c] > 0) unite(parent, c, c - long(nx_) * ny_);
-      }
-  std::vector<long> root(n_);
-  for (long c = 0; c < n_; ++c) root[c] = find_root(parent, c);
-  std::vector<char> grounded(n_, 0), at_cut(n_, 0);
-  std::vector<double> count(n_, 0.0);
-  for (long c = 0; c < n_; ++c) {
-    if (open_[c] > 0) grounded[root[c]] = 1;
-    count[root[c]] += 1;
-  }
-  // Global id of a local root: the global index of its cell (unique over the ranks, exact in
-  // a double for any grid this code can hold).
-  auto gid = [&](long c) {
-    const long i = c % nx_, j = (c / nx_) % ny_, k = c / (long(nx_) * ny_);
-    return (lo[0] + i) + long(gn[0]) * ((lo[1] + j) + long(gn[1]) * (lo[2] + k));
-  };
+  BlockComponents b = block_components(e, w_, open_);
   // 2. Labels of the cells next to each cut, exchanged; joined through faces with w > 0.
-  std::vector<long> edges;  // pairs (own root gid, neighbour root gid), from the upper sides
-  {
-    std::vector<double> out[6], in[6];
-    MPI_Request rq[12];
-    int nr = 0;
-    for (int s = 0; s < 6; ++s) {
-      const int nb = blocks_.neighbour(s);
-      if (nb < 0) continue;
-      in[s].resize(layer_count(e, s / 2));
-      MPI_Irecv(in[s].data(), int(in[s].size()), MPI_DOUBLE, nb, kTagLabel + (s ^ 1), comm_, &rq[nr++]);
-      out[s].resize(in[s].size());
-      for_layer(e, s, [&](long q, long c) { out[s][q] = double(gid(root[c])); });
-      MPI_Isend(out[s].data(), int(out[s].size()), MPI_DOUBLE, nb, kTagLabel + s, comm_, &rq[nr++]);
-    }
-    MPI_Waitall(nr, rq, MPI_STATUSES_IGNORE);
-    for (int s = 0; s < 6; ++s) {
-      if (!blocks_.is_cut(s)) continue;
-      const double* w = w_[s / 2].data();
-      for_layer(e, s, [&](long q, long c) {
-        if (!(w[side_face(e, s, c)] > 0)) return;
-        at_cut[root[c]] = 1;
-        if (s % 2) edges.insert(edges.end(), {gid(root[c]), long(in[s][q])});
-      });
-    }
-  }
+  const std::vector<long> edges = cut_edges(comm_, blocks_, e, w_, gid, b);
   // 3. The components that touch a cut, gathered on every rank: (gid, grounded, count).
   std::vector<long> rec;
   for (long c = 0; c < n_; ++c)
-    if (root[c] == c && at_cut[c]) rec.insert(rec.end(), {gid(c), long(grounded[c]), long(count[c])});
-  int size = 0;
-  MPI_Comm_size(comm_, &size);
-  auto gather = [&](const std::vector<long>& mine) {
-    int m = int(mine.size());
-    std::vector<int> counts(size), displ(size, 0);
-    MPI_Allgather(&m, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-    for (int r = 1; r < size; ++r) displ[r] = displ[r - 1] + counts[r - 1];
-    std::vector<long> all(displ[size - 1] + counts[size - 1]);
-    MPI_Allgatherv(mine.data(), m, MPI_LONG, all.data(), counts.data(), displ.data(), MPI_LONG, comm_);
-    return all;
-  };
-  const std::vector<long> all_rec = gather(rec), all_edges = gather(edges);
-  // 4. Join them the same way on every rank: ids sorted, the smallest id is the root.
-  const long nrec = long(all_rec.size()) / 3;
-  std::vector<long> ids(nrec);
-  for (long r = 0; r < nrec; ++r) ids[r] = all_rec[3 * r];
-  std::vector<long> order(nrec);
-  std::iota(order.begin(), order.end(), 0L);
-  std::sort(order.begin(), order.end(), [&](long p, long q) { return ids[p] < ids[q]; });
-  std::vector<long> sorted(nrec);
-  for (long r = 0; r < nrec; ++r) sorted[r] = ids[order[r]];
-  auto index_of = [&](long id) { return long(std::lower_bound(sorted.begin(), sorted.end(), id) - sorted.begin()); };
-  std::vector<long> gparent(nrec);
-  std::iota(gparent.begin(), gparent.end(), 0L);
-  for (size_t q = 0; q + 1 < all_edges.size(); q += 2) unite(gparent, index_of(all_edges[q]), index_of(all_edges[q + 1]));
-  std::vector<char> g_grounded(nrec, 0);
-  std::vector<double> g_count(nrec, 0.0);
-  for (long r = 0; r < nrec; ++r) {
-    const long x = index_of(ids[r]), top = find_root(gparent, x);
-    if (all_rec[3 * r + 1]) g_grounded[top] = 1;
-    g_count[top] += double(all_rec[3 * r + 2]);
-  }
-  std::vector<int> cross_id(nrec, -1);
-  cross_count_.clear();
-  for (long x = 0; x < nrec; ++x)
-    if (find_root(gparent, x) == x && !g_grounded[x]) {
-      cross_id[x] = int(cross_count_.size());
-      cross_count_.push_back(g_count[x]);
-    }
+    if (b.root[c] == c && b.at_cut[c]) rec.insert(rec.end(), {gid(c), long(b.grounded[c]), long(b.count[c])});
+  const std::vector<long> all_rec = gather_all(comm_, rec);
+  const std::vector<long> all_edges = gather_all(comm_, edges);
+  // 4. Join them the same way on every rank.
+  CrossComponents x = join_cross(all_rec, all_edges);
+  cross_count_ = x.cross_count;
   // 5. Per cell: grounded, local floating component, or floating component over ranks.
   comp_.assign(n_, -1);
   local_count_.clear();
@@ -340,20 +407,20 @@ void DistPoisson::label_components() {
   std::vector<int> local_id(n_, -1);
   int n_local = 0;
   for (long c = 0; c < n_; ++c) {
-    const long r = root[c];
-    if (at_cut[r]) {
-      const int q = cross_id[find_root(gparent, index_of(gid(r)))];
+    const long r = b.root[c];
+    if (b.at_cut[r]) {
+      const int q = x.cross_id[find_root(x.parent, x.index_of(gid(r)))];
       if (q >= 0) comp_[c] = -2 - q;
       continue;
     }
-    if (grounded[r]) continue;
-    if (count[r] == 1) {
+    if (b.grounded[r]) continue;
+    if (b.count[r] == 1) {
       isolated_.push_back(c);
       continue;
     }
     if (local_id[r] < 0) {
       local_id[r] = n_local++;
-      local_count_.push_back(count[r]);
+      local_count_.push_back(b.count[r]);
     }
     comp_[c] = local_id[r];
   }

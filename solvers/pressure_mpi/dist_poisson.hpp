@@ -66,6 +66,11 @@ class DistPoisson {
   int floating_components() const { return n_floating_; }  // over all ranks
 
  private:
+  // The steps of set() after the checks: the cut faces' coefficients from the upper block
+  // (a_), then the weights, the diagonal and the Open terms (w_, diag_, open_), then the
+  // floating components (comp_ and the rest below).
+  void sync_cut_faces();
+  void assemble_weights();
   void label_components();
   void exchange_layers(const double* x);
   void exchange_finish();

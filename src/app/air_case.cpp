@@ -21,15 +21,9 @@ fluid::BcType side_type(const Section& s, const std::string& key, const std::str
   return t == "wall" ? fluid::BcType::Wall : (t == "open" ? fluid::BcType::Open : fluid::BcType::Periodic);
 }
 
-}  // namespace
-
-AirCase read_air_case(Config& cfg, const DemParams& dem) {
-  AirCase a;
-  Section root = cfg.root();
-  if (!root.has("air")) return a;
-  Section s = root.section("air");
-  a.enabled = s.boolean_or("enabled", true);
-
+// The air grid: air.dx over the DEM domain, a whole number (>= 2) of cells along every axis,
+// at most kMaxCellsPerAxis per axis and kMaxCells in all. Writes a.grid.
+void read_grid(const Section& s, const DemParams& dem, AirCase& a) {
   const double dx = s.number_or("dx", 0.6e-3, Range::open_closed(0, 1));
   const Vec3 size = dem.domain.hi - dem.domain.lo;
   std::array<int, 3> n{};
@@ -49,7 +43,12 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   a.grid.nx = n[0], a.grid.ny = n[1], a.grid.nz = n[2];
   a.grid.dx = dx;
   a.grid.origin = dem.domain.lo;
+}
 
+// The air's material and step, and the coupling's time step and scheme ([air.implicit] only
+// with the implicit coupling; air.dt_max not under the DEM step). Writes a.fluid (without
+// pressure and boundary) and a.coupled.
+void read_air_and_coupling(const Section& s, const DemParams& dem, AirCase& a) {
   fluid::FluidParams& f = a.fluid;
   f.rho = s.number_or("density", 1.0, Range::open_closed(0, kMaxDensity));
   f.mu = s.number_or("viscosity", 1.8e-5, Range::open_closed(0, kMaxViscosity));
@@ -75,8 +74,13 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
     o.max_iterations = static_cast<int>(is->integer_or("max_iterations", o.max_iterations, Range::closed(1, 1000)));
     o.depth = static_cast<int>(is->integer_or("depth", o.depth, Range::closed(0, 20)));
   }
+}
 
-  Section ps = s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure")));
+// [air.pressure]: the pressure solve (the method names from the registry,
+// solvers/pressure/pressure_solver.hpp). Writes a.fluid.pressure, a.fluid.stage_rel_tol and
+// a.mpi_preconditioner.
+void read_pressure(const Section& ps, AirCase& a) {
+  fluid::FluidParams& f = a.fluid;
   f.pressure.method = ps.string_or("method", "pcg-mg2", pressure::pressure_method_names());
   f.pressure.krylov = ps.string_or("krylov", "sundials", {"sundials", "fused"});
   f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range{0, 1, true, true});
@@ -84,8 +88,12 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
   f.stage_rel_tol = ps.number_or("stage_tolerance", f.stage_rel_tol, Range{0, 1, true, true});
   a.mpi_preconditioner =
       ps.string_or("mpi_preconditioner", "auto", {"auto", "pfmg", "bj-mg", "bj-mg2", "bj-fft", "as-mg", "as-mg2", "none"});
+}
 
-  Section bs = s.optional_section("boundary").value_or(Section(&cfg, s.key_path("boundary")));
+// [air.boundary]: the six sides (periodic exactly where the DEM domain is; by default walls
+// and an open top) at the one open pressure. Writes a.fluid.bc.
+void read_boundary(const Section& bs, const DemParams& dem, AirCase& a) {
+  fluid::FluidParams& f = a.fluid;
   const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   const double p_open = bs.number_or("open_pressure", 0.0, Range::closed(-1e7, 1e7));
   for (int side = 0; side < 6; ++side) {
@@ -97,7 +105,12 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
       bs.fail(names[side], fmt::format("must be \"periodic\" exactly when the {} axis is periodic in domain.periodic",
                                        "xyz"[axis]));
   }
+}
 
+// The momentum exchange with the parcels: drag law (the registry, coupling/drag.hpp), the
+// air it sees, the void fraction's floor and next to walls. Reads a.fluid; writes a.exchange.
+void read_exchange(const Section& s, AirCase& a) {
+  const fluid::FluidParams& f = a.fluid;
   a.exchange.law = coupling::parse_drag_law(s.string_or("drag", "ergun-wen-yu", coupling::drag_law_names()));
   a.exchange.air = {f.rho, f.mu};
   a.exchange.eps_min = s.number_or("eps_min", 0.2, Range{0.0, 1.0, true, true});
@@ -105,7 +118,24 @@ AirCase read_air_case(Config& cfg, const DemParams& dem) {
                                  ? coupling::WallPorosity::Cell
                                  : coupling::WallPorosity::Packing;
   a.exchange.bc = f.bc;
-  f.validate();
+}
+
+}  // namespace
+
+// The steps in the order their keys are read (the order of the key reference and of the first
+// error a case gets); the parameters are validated as a whole at the end.
+AirCase read_air_case(Config& cfg, const DemParams& dem) {
+  AirCase a;
+  Section root = cfg.root();
+  if (!root.has("air")) return a;
+  Section s = root.section("air");
+  a.enabled = s.boolean_or("enabled", true);
+  read_grid(s, dem, a);
+  read_air_and_coupling(s, dem, a);
+  read_pressure(s.optional_section("pressure").value_or(Section(&cfg, s.key_path("pressure"))), a);
+  read_boundary(s.optional_section("boundary").value_or(Section(&cfg, s.key_path("boundary"))), dem, a);
+  read_exchange(s, a);
+  a.fluid.validate();
   return a;
 }
 

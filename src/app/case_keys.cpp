@@ -21,10 +21,14 @@ namespace {
 // cavity; a body moving at a constant velocity or by a velocity table; the four shapes;
 // a flow step given as dt or as a Courant number). Their values do not enter the
 // reference: a default is the one the reader passes, whatever the case sets.
-const char* kParticleCase = R"(
-[particles]
-seed = 7
-skin = 0.0
+//
+// The [time] and [output] tables of both cases with parcels.
+std::string time_and_output(const char* end, const char* dt) {
+  return fmt::format("\n[time]\nend = {}\ndt = {}\n\n[output]\ndir = \"out\"\n", end, dt);
+}
+
+// The species of both cases with parcels and the head of their first insertion.
+const std::string kSpeciesAndInsertion = R"(
 [[particles.species]]
 name = "powder"
 d_original = 125e-6
@@ -32,7 +36,12 @@ ratio = 3
 density = 1500.0
 [[particles.insert]]
 species = "powder"
-count = 10
+count = 10)";
+
+const std::string kParticleCase = R"(
+[particles]
+seed = 7
+skin = 0.0)" + kSpeciesAndInsertion + R"(
 min = [1e-3, 1e-3, 12e-3]
 max = [5e-3, 4e-3, 16e-3]
 velocity = [0.0, 0.0, 0.0]
@@ -125,26 +134,12 @@ method = "pcg-mg2"
 [air.boundary]
 open_pressure = 0.0
 
-[time]
-end = 0.04
-dt = 1.0e-6
-
-[output]
-dir = "out"
-)";
+)" + time_and_output("0.04", "1.0e-6");
 
 // The other contact law (src/contact/laws.hpp): its own keys.
-const char* kHertzCase = R"(
+const std::string kHertzCase = R"(
 [particles]
-seed = 7
-[[particles.species]]
-name = "powder"
-d_original = 125e-6
-ratio = 3
-density = 1500.0
-[[particles.insert]]
-species = "powder"
-count = 10
+seed = 7)" + kSpeciesAndInsertion + R"(
 min = [1e-3, 1e-3, 1e-3]
 max = [5e-3, 4e-3, 5e-3]
 
@@ -162,19 +157,16 @@ max_impact_speed = 1.0
 min = [0.0, 0.0, 0.0]
 max = [6e-3, 5e-3, 6e-3]
 
-[time]
-dt = 1e-7
-end = 1e-3
+)" + time_and_output("1e-3", "1e-7");
 
-[output]
-dir = "out"
-)";
-
-const char* kFlowCaseDt = R"(
+// The flow cases, with the step given as dt and as a Courant number.
+const std::string kFlowHead = R"(
 [flow]
 kind = "taylor_green"
 n = 16
-end = 0.5
+end = 0.5)";
+
+const std::string kFlowCaseDt = kFlowHead + R"(
 dt = 0.05
 [flow.pressure]
 method = "pcg-fft"
@@ -182,18 +174,14 @@ method = "pcg-fft"
 dir = "out/taylor_green"
 )";
 
-const char* kFlowCaseCfl = R"(
-[flow]
-kind = "taylor_green"
-n = 16
-end = 0.5
+const std::string kFlowCaseCfl = kFlowHead + R"(
 cfl = 0.5
 )";
 
 // The keys the readers ask of the built-in cases, each once.
-std::vector<KeyUse> keys_of(const std::vector<const char*>& cases) {
+std::vector<KeyUse> keys_of(const std::vector<std::string>& cases) {
   KeyLog log;
-  for (const char* text : cases) {
+  for (const std::string& text : cases) {
     Config cfg = Config::from_string(text, "the built-in case of the key reference");
     cfg.log_keys(&log);
     read_case(cfg);

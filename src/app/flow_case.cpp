@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
+#include "fluid/taylor_green.hpp"
 #include "geometry/scene.hpp"
 #include "io/atomic_file.hpp"
 #include "io/metrics.hpp"
@@ -22,21 +23,38 @@ namespace {
 
 constexpr double kMaxFlowSteps = 1e9;
 
-// The exact Taylor-Green field at amplitude factor F (flow_case.hpp).
-struct TaylorGreen {
-  double k, u0;
-  double u(const Vec3& x, double F) const { return u0 * std::sin(k * x.x) * std::cos(k * x.y) * F; }
-  double v(const Vec3& x, double F) const { return -u0 * std::cos(k * x.x) * std::sin(k * x.y) * F; }
-};
-
-// Visits the n^2 distinct x- and y-faces of the periodic slab (face n is the image of 0):
-// fn(component d, face centre x, value).
-template <class Fn>
-void for_each_face(const fluid::FluidState& s, Fn&& fn) {
-  const auto& g = s.grid;
-  for (int d = 0; d < 2; ++d)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) fn(d, g.face_centre(d, i, j, 0), s.vel(d)(i, j, 0));
+// The fixed step from exactly one of flow.dt (end a whole number of steps) and flow.cfl (a
+// fraction of the explicit limit), at most kMaxFlowSteps steps and within the explicit limit
+// of the air solver. Reads c.grid, c.amplitude, c.t_end and c.fluid; writes c.dt and c.steps.
+void resolve_step(const Section& s, FlowCase& c) {
+  const fluid::FluidParams& f = c.fluid;
+  const double dx = c.grid.dx;
+  const bool has_dt = s.has("dt"), has_cfl = s.has("cfl");
+  if (has_dt == has_cfl) s.fail(has_dt ? "cfl" : "dt", "give exactly one of flow.dt and flow.cfl");
+  if (has_dt) {
+    c.dt = s.number("dt", Range::open_closed(0, 1e6));
+    const double steps = c.t_end / c.dt;
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("dt", fmt::format("flow.end / flow.dt = {:.3g} steps, more than {:g}", steps, kMaxFlowSteps));
+    c.steps = std::lround(steps);
+    if (c.steps < 1 || std::fabs(steps - c.steps) > 1e-9 * steps)
+      s.fail("dt", fmt::format("flow.end = {:g} s is not a whole number of steps of {:g} s", c.t_end, c.dt));
+  }
+  const double dt_adv = dx / (2 * c.amplitude), dt_visc = dx * dx * f.rho / (6 * f.mu);
+  if (has_cfl) {
+    const double cfl = s.number("cfl", Range::open_closed(0, 1));
+    const double steps = std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9);
+    if (!(steps <= kMaxFlowSteps))
+      s.fail("cfl", fmt::format("flow.end = {:g} s takes {:.3g} steps at this Courant number, more than {:g}", c.t_end,
+                                steps, kMaxFlowSteps));
+    c.steps = static_cast<long>(steps);
+    c.dt = c.t_end / c.steps;
+  }
+  if (c.dt > dt_adv * (1 + 1e-12) || c.dt > dt_visc * (1 + 1e-12))
+    s.fail(has_dt ? "dt" : "cfl",
+           fmt::format("the step {:g} s exceeds the explicit limit of the air solver on {} cells: {:g} s (Courant "
+                       "number 2 U0 dt/dx = 1: {:g} s; viscous dx^2 rho/(6 mu): {:g} s)",
+                       c.dt, c.n, std::min(dt_adv, dt_visc), dt_adv, dt_visc));
 }
 
 }  // namespace
@@ -68,33 +86,7 @@ FlowCase read_flow_case(Config& cfg) {
   f.visc_safety = 1.0;
 
   c.grid = {c.n, c.n, 1, c.length / c.n, {0, 0, 0}};
-  const double dx = c.grid.dx;
-  const bool has_dt = s.has("dt"), has_cfl = s.has("cfl");
-  if (has_dt == has_cfl) s.fail(has_dt ? "cfl" : "dt", "give exactly one of flow.dt and flow.cfl");
-  if (has_dt) {
-    c.dt = s.number("dt", Range::open_closed(0, 1e6));
-    const double steps = c.t_end / c.dt;
-    if (!(steps <= kMaxFlowSteps))
-      s.fail("dt", fmt::format("flow.end / flow.dt = {:.3g} steps, more than {:g}", steps, kMaxFlowSteps));
-    c.steps = std::lround(steps);
-    if (c.steps < 1 || std::fabs(steps - c.steps) > 1e-9 * steps)
-      s.fail("dt", fmt::format("flow.end = {:g} s is not a whole number of steps of {:g} s", c.t_end, c.dt));
-  }
-  const double dt_adv = dx / (2 * c.amplitude), dt_visc = dx * dx * f.rho / (6 * f.mu);
-  if (has_cfl) {
-    const double cfl = s.number("cfl", Range::open_closed(0, 1));
-    const double steps = std::ceil(c.t_end / (cfl * std::min(dt_adv, dt_visc)) - 1e-9);
-    if (!(steps <= kMaxFlowSteps))
-      s.fail("cfl", fmt::format("flow.end = {:g} s takes {:.3g} steps at this Courant number, more than {:g}", c.t_end,
-                                steps, kMaxFlowSteps));
-    c.steps = static_cast<long>(steps);
-    c.dt = c.t_end / c.steps;
-  }
-  if (c.dt > dt_adv * (1 + 1e-12) || c.dt > dt_visc * (1 + 1e-12))
-    s.fail(has_dt ? "dt" : "cfl",
-           fmt::format("the step {:g} s exceeds the explicit limit of the air solver on {} cells: {:g} s (Courant "
-                       "number 2 U0 dt/dx = 1: {:g} s; viscous dx^2 rho/(6 mu): {:g} s)",
-                       c.dt, c.n, std::min(dt_adv, dt_visc), dt_adv, dt_visc));
+  resolve_step(s, c);
   f.validate();
 
   Section os = cfg.root().optional_section("output").value_or(Section(&cfg, "output"));
@@ -131,7 +123,7 @@ class FlowRun final : public run::Run {
  private:
   const FlowCase& c_;
   std::string case_file_, config_;
-  TaylorGreen tg_;
+  fluid::TaylorGreen tg_;
   Stopwatch clock_;
   std::unique_ptr<fluid::FluidSolver> solver_;
   fluid::FluidState s_;
@@ -152,15 +144,7 @@ bool FlowRun::set_up() {
              c_.fluid.time_order, c_.fluid.pressure.method, c_.fluid.pressure.rel_tol);
   solver_ = std::make_unique<fluid::FluidSolver>(c_.grid, c_.fluid);
   s_ = fluid::make_fluid_state(c_.grid);
-  for (int d = 0; d < 2; ++d) {
-    fluid::Field& f = s_.vel(d);
-    for (int kk = 0; kk < f.nk(); ++kk)
-      for (int j = 0; j < f.nj(); ++j)
-        for (int i = 0; i < f.ni(); ++i) {
-          const Vec3 x = c_.grid.face_centre(d, i, j, kk);
-          f(i, j, kk) = d == 0 ? tg_.u(x, 1.0) : tg_.v(x, 1.0);
-        }
-  }
+  fluid::set_taylor_green(s_, tg_, 1.0);
   return false;  // flow cases have no checkpoints
 }
 
@@ -178,21 +162,12 @@ void FlowRun::check_health() {
 // Errors against the exact solution at t = end, into metrics.csv.
 int FlowRun::report() {
   const double nu = c_.fluid.mu / c_.fluid.rho;
-  const double F = std::exp(-2 * nu * tg_.k * tg_.k * c_.t_end);
-  double e2 = 0, emax = 0, ke2 = 0, proj = 0, norm1 = 0;
-  for_each_face(s_, [&](int d, const Vec3& x, double value) {
-    const double shape = d == 0 ? tg_.u(x, 1.0) : tg_.v(x, 1.0), e = value - shape * F;
-    e2 += e * e;
-    emax = std::max(emax, std::fabs(e));
-    ke2 += value * value;
-    proj += value * shape;
-    norm1 += shape * shape;
-  });
-  const double faces = 2.0 * c_.n * c_.n, cells = static_cast<double>(c_.n) * c_.n;
-  const double ke = 0.5 * c_.fluid.rho * ke2 / cells, ke_exact = c_.fluid.rho * c_.amplitude * c_.amplitude * F * F / 4;
-  const double A = proj / norm1;  // shape carries U0 already: A is dimensionless
-  const io::Metrics m{{"u_error_l2_m_s", std::sqrt(e2 / faces)},
-                      {"u_error_max_m_s", emax},
+  const double F = tg_.decay(nu, c_.t_end);
+  const fluid::TaylorGreenErrors e = fluid::taylor_green_errors(s_, tg_, c_.fluid.rho, F);
+  const double ke = e.kinetic_energy, ke_exact = tg_.kinetic_energy(c_.fluid.rho, F);
+  const double A = e.decay_factor;
+  const io::Metrics m{{"u_error_l2_m_s", e.l2},
+                      {"u_error_max_m_s", e.max},
                       {"kinetic_energy_J_m3", ke},
                       {"kinetic_energy_rel_error", (ke - ke_exact) / ke_exact},
                       {"decay_factor", A},
@@ -206,7 +181,7 @@ int FlowRun::report() {
   io::write_metrics((std::filesystem::path(c_.output_dir) / "metrics.csv").string(), m);
   fmt::print("taylor-green at t = {:g} s: u error rms {:.4e} m/s, max {:.4e} m/s; KE {:.6e} J/m^3 (rel. error {:.3e}); "
              "decay factor {:.10f} (exact {:.10f}); max divergence {:.1e} 1/s; {:.2f} s\n",
-             s_.t, std::sqrt(e2 / faces), emax, ke, (ke - ke_exact) / ke_exact, A, F, max_div_, clock_.seconds());
+             s_.t, e.l2, e.max, ke, (ke - ke_exact) / ke_exact, A, F, max_div_, clock_.seconds());
   fmt::print("results in {}\n", c_.output_dir);
   return 0;
 }

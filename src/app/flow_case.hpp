@@ -4,7 +4,7 @@
 //
 // kind = "taylor_green": the periodic 2-D Taylor-Green vortex in a box [0, L]^2 (a one-cell
 // periodic slab in z, all six sides periodic), rho and mu constant, no gravity. With
-// k = 2 pi / L and nu = mu / rho the exact solution (docs/references.md, Taylor-Green vortex) is
+// k = 2 pi / L and nu = mu / rho the exact solution (fluid/taylor_green.hpp) is
 //   u = U0 sin(kx) cos(ky) F,  v = -U0 cos(kx) sin(ky) F,  F(t) = exp(-2 nu k^2 t),
 //   mean kinetic energy density  KE(t) = rho U0^2 F^2 / 4.
 // The air solver (solvers/fluid/fluid_solver.hpp) starts from the exact field sampled at

@@ -22,25 +22,46 @@ const FieldInfo* air_field_info(const std::string& name) {
   return it == known.end() ? nullptr : &it->second;
 }
 
-GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
-                                       int compression)
-    : dir_(std::move(dir)),
-      prefix_(std::move(prefix)),
-      attributes_(std::move(attributes)),
-      compression_(compression),
-      index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
-  check_series_name(prefix_, "grid snapshot prefix");
-  detail::check_reserved_attributes(attributes_, "grid snapshot");
-  h5::check_level(compression_, dir_ + "/" + prefix_ + "_*.h5");
-  std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
-  if (resume)
-    for (int64_t s : find_snapshot_steps(dir_, prefix_)) index_.set(s, render(read_entry(s)));
+namespace {
+
+// A cell field's units and description: from write()'s `info`, else air_field_info().
+const FieldInfo& field_info(const FieldInfos& info, const std::string& name, const std::string& path) {
+  auto it = info.find(name);
+  if (it != info.end()) return it->second;
+  if (const FieldInfo* known = air_field_info(name)) return *known;
+  throw Error(path + ": grid field '" + name + "' has no units and description");
 }
 
-std::string GridSnapshotSeries::snapshot_path(int64_t step) const {
-  return dir_ + "/" + snapshot_file_name(prefix_, step);
+// The cell fields of write() checked (a valid name with units and description, each name
+// once across scalars and vectors, ncell values per array); their names, in map order, into
+// scalar_names and vector_names.
+void check_fields(const std::string& path, size_t ncell, const CellScalars& scalars, const CellVectors& vectors,
+                  const FieldInfos& info, std::vector<std::string>& scalar_names,
+                  std::vector<std::string>& vector_names) {
+  std::set<std::string> names;
+  auto check_field = [&](const std::string& name, size_t size) {
+    check_series_name(name, "grid field name");
+    field_info(info, name, path);
+    if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
+    if (size != ncell)
+      throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
+                  std::to_string(ncell) + " cells");
+  };
+  for (const auto& [name, v] : scalars) check_field(name, v.size()), scalar_names.push_back(name);
+  for (const auto& [name, v] : vectors) {
+    for (const auto& comp : v) check_field(name, comp.size()), names.erase(name);
+    names.insert(name);
+    vector_names.push_back(name);
+  }
+}
+
+}  // namespace
+
+GridSnapshotSeries::GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
+                                       int compression)
+    : H5Series(std::move(dir), std::move(prefix), std::move(attributes), compression, "grid snapshot") {
+  if (resume)
+    for (int64_t s : existing_steps()) index_.set(s, render(read_entry(s)));
 }
 
 std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
@@ -54,27 +75,8 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
   if (!(spacing.x > 0 && spacing.y > 0 && spacing.z > 0)) throw Error(path + ": grid spacing must be > 0");
   const size_t ncell = static_cast<size_t>(nx) * ny * nz;
   Entry e{step, time, {nx, ny, nz}, origin, spacing, {}, {}};
-  std::set<std::string> names;
-  auto info_of = [&](const std::string& name) -> const FieldInfo& {
-    auto it = info.find(name);
-    if (it != info.end()) return it->second;
-    if (const FieldInfo* known = air_field_info(name)) return *known;
-    throw Error(path + ": grid field '" + name + "' has no units and description");
-  };
-  auto check_field = [&](const std::string& name, size_t size) {
-    check_series_name(name, "grid field name");
-    info_of(name);
-    if (!names.insert(name).second) throw Error(path + ": grid field '" + name + "' given twice");
-    if (size != ncell)
-      throw Error(path + ": grid field '" + name + "' has " + std::to_string(size) + " values for " +
-                  std::to_string(ncell) + " cells");
-  };
-  for (const auto& [name, v] : scalars) check_field(name, v.size()), e.scalars.push_back(name);
-  for (const auto& [name, v] : vectors) {
-    for (const auto& comp : v) check_field(name, comp.size()), names.erase(name);
-    names.insert(name);
-    e.vectors.push_back(name);
-  }
+  check_fields(path, ncell, scalars, vectors, info, e.scalars, e.vectors);
+  auto info_of = [&](const std::string& name) -> const FieldInfo& { return field_info(info, name, path); };
 
   const hsize_t Z = nz, Y = ny, X = nx;
   AtomicTarget target(path);
@@ -102,35 +104,32 @@ std::string GridSnapshotSeries::write(int64_t step, double time, int nx, int ny,
     grid.reset();
     file.close_checked("'" + path + "'");
   }
-  target.commit();
-  index_.set(step, render(e));
-  index_.write();
+  publish(target, step, render(e));
   return path;
 }
 
 GridSnapshotSeries::Entry GridSnapshotSeries::read_entry(int64_t step) const {
-  h5::Quiet quiet;
-  const std::string path = snapshot_path(step);
-  h5::Id file = h5::open_file(path);
-  Entry e;
-  e.step = step;
-  e.time = h5::read_double_attribute(file, "time", path);
-  std::vector<hsize_t> dims;
-  std::vector<int64_t> n = h5::read_int64(file, "grid/n", dims, path);
-  std::vector<double> o = h5::read_double(file, "grid/origin", dims, path);
-  std::vector<double> h = h5::read_double(file, "grid/spacing", dims, path);
-  if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error("HDF5 file '" + path + "': malformed /grid");
-  e.n = {n[0], n[1], n[2]};
-  e.origin = {o[0], o[1], o[2]};
-  e.spacing = {h[0], h[1], h[2]};
-  h5::Id cells(H5Gopen2(file, "cells", H5P_DEFAULT), H5Gclose);
-  if (cells.get() < 0) throw Error("HDF5 file '" + path + "': no group '/cells'");
-  for (const std::string& name : h5::members(cells, path)) {
-    h5::Id set(H5Dopen2(cells, name.c_str(), H5P_DEFAULT), H5Dclose);
-    h5::Id space(H5Dget_space(set), H5Sclose);
-    (H5Sget_simple_extent_ndims(space) == 4 ? e.vectors : e.scalars).push_back(name);
-  }
-  return e;
+  return read_back(step, [&](const h5::Id& file, const std::string& path, double time) {
+    Entry e;
+    e.step = step;
+    e.time = time;
+    std::vector<hsize_t> dims;
+    std::vector<int64_t> n = h5::read_int64(file, "grid/n", dims, path);
+    std::vector<double> o = h5::read_double(file, "grid/origin", dims, path);
+    std::vector<double> h = h5::read_double(file, "grid/spacing", dims, path);
+    if (n.size() != 3 || o.size() != 3 || h.size() != 3) throw Error("HDF5 file '" + path + "': malformed /grid");
+    e.n = {n[0], n[1], n[2]};
+    e.origin = {o[0], o[1], o[2]};
+    e.spacing = {h[0], h[1], h[2]};
+    h5::Id cells(H5Gopen2(file, "cells", H5P_DEFAULT), H5Gclose);
+    if (cells.get() < 0) throw Error("HDF5 file '" + path + "': no group '/cells'");
+    for (const std::string& name : h5::members(cells, path)) {
+      h5::Id set(H5Dopen2(cells, name.c_str(), H5P_DEFAULT), H5Dclose);
+      h5::Id space(H5Dget_space(set), H5Sclose);
+      (H5Sget_simple_extent_ndims(space) == 4 ? e.vectors : e.scalars).push_back(name);
+    }
+    return e;
+  });
 }
 
 std::string GridSnapshotSeries::render(const Entry& e) const {

@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "core/vec3.hpp"
+#include "io/h5_series.hpp"
 #include "io/particle_h5.hpp"
-#include "io/xdmf_series.hpp"
 
 namespace cgdem::io {
 
@@ -37,7 +37,7 @@ using CellVectors = std::map<std::string, std::array<std::vector<double>, 3>>;  
 // any other name.
 const FieldInfo* air_field_info(const std::string& name);
 
-class GridSnapshotSeries {
+class GridSnapshotSeries : public H5Series {
  public:
   // compression: 0..9 (h5_options.hpp).
   GridSnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume = false,
@@ -47,10 +47,6 @@ class GridSnapshotSeries {
   // each must have its units and description in `info` or in air_field_info().
   std::string write(int64_t step, double time, int nx, int ny, int nz, Vec3 origin, Vec3 spacing,
                     const CellScalars& scalars, const CellVectors& vectors = {}, const FieldInfos& info = {});
-
-  const std::string& xdmf_path() const { return index_.path(); }
-  std::string snapshot_path(int64_t step) const;
-  std::vector<int64_t> steps() const { return index_.steps(); }
 
  private:
   struct Entry {
@@ -62,11 +58,6 @@ class GridSnapshotSeries {
   };
   std::string render(const Entry& e) const;
   Entry read_entry(int64_t step) const;
-
-  std::string dir_, prefix_;
-  Attributes attributes_;
-  int compression_;
-  XdmfTimeSeries index_;
 };
 
 }  // namespace cgdem::io

@@ -1,7 +1,5 @@
 #include "io/snapshot_series.hpp"
 
-#include <filesystem>
-
 #include "io/atomic_file.hpp"
 #include "io/h5_util.hpp"
 #include "io/particle_h5.hpp"
@@ -15,23 +13,9 @@ const char* const kReserved[] = {"velocity", "omega", "position", "diameter", "i
 
 SnapshotSeries::SnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume,
                                int compression)
-    : dir_(std::move(dir)),
-      prefix_(std::move(prefix)),
-      attributes_(std::move(attributes)),
-      compression_(compression),
-      index_(dir_ + "/" + prefix_ + ".xdmf", prefix_) {
-  check_series_name(prefix_, "snapshot prefix");
-  detail::check_reserved_attributes(attributes_, "snapshot");
-  h5::check_level(compression_, dir_ + "/" + prefix_ + "_*.h5");
-  std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (!std::filesystem::is_directory(dir_)) throw Error("cannot create output directory '" + dir_ + "'");
+    : H5Series(std::move(dir), std::move(prefix), std::move(attributes), compression, "snapshot") {
   if (resume)
-    for (int64_t s : find_snapshot_steps(dir_, prefix_)) index_.set(s, render(read_entry(s)));
-}
-
-std::string SnapshotSeries::snapshot_path(int64_t step) const {
-  return dir_ + "/" + snapshot_file_name(prefix_, step);
+    for (int64_t s : existing_steps()) index_.set(s, render(read_entry(s)));
 }
 
 std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable& table, const ScalarFields& extra,
@@ -62,29 +46,26 @@ std::string SnapshotSeries::write(int64_t step, double time, const ParticleTable
     g.reset();
     file.close_checked("'" + path + "'");
   }
-  target.commit();
-  index_.set(step, render(e));
-  index_.write();
+  publish(target, step, render(e));
   return path;
 }
 
 SnapshotSeries::Entry SnapshotSeries::read_entry(int64_t step) const {
-  h5::Quiet quiet;
-  const std::string path = snapshot_path(step);
-  h5::Id file = h5::open_file(path);
-  Entry e;
-  e.step = step;
-  e.time = h5::read_double_attribute(file, "time", path);
-  std::vector<hsize_t> dims;
-  e.n = h5::read_double(file, "particles/d", dims, path).size();
-  e.has_v = h5::exists(file, "particles/v");
-  e.has_omega = h5::exists(file, "particles/omega");
-  e.has_vertex = h5::exists(file, "particles/vertex");
-  if (h5::exists(file, "fields")) {
-    h5::Id g(H5Gopen2(file, "fields", H5P_DEFAULT), H5Gclose);
-    e.fields = h5::members(g, path);
-  }
-  return e;
+  return read_back(step, [&](const h5::Id& file, const std::string& path, double time) {
+    Entry e;
+    e.step = step;
+    e.time = time;
+    std::vector<hsize_t> dims;
+    e.n = h5::read_double(file, "particles/d", dims, path).size();
+    e.has_v = h5::exists(file, "particles/v");
+    e.has_omega = h5::exists(file, "particles/omega");
+    e.has_vertex = h5::exists(file, "particles/vertex");
+    if (h5::exists(file, "fields")) {
+      h5::Id g(H5Gopen2(file, "fields", H5P_DEFAULT), H5Gclose);
+      e.fields = h5::members(g, path);
+    }
+    return e;
+  });
 }
 
 std::string SnapshotSeries::render(const Entry& e) const {

@@ -25,29 +25,26 @@
 #include <string>
 #include <vector>
 
+#include "io/h5_series.hpp"
 #include "io/particle_h5.hpp"
-#include "io/xdmf_series.hpp"
 
 namespace cgdem::io {
 
 using ScalarFields = std::map<std::string, std::vector<double>>;
 
-class SnapshotSeries {
+class SnapshotSeries : public H5Series {
  public:
   // compression: 0..9 (h5_options.hpp).
   SnapshotSeries(std::string dir, std::string prefix, Attributes attributes, bool resume = false,
                  int compression = kDefaultCompression);
 
-  // Writes one snapshot and rewrites the index; returns the snapshot's path.
+  // Writes one snapshot and rewrites the index; returns the snapshot's path (snapshot_path,
+  // xdmf_path and steps: H5Series).
   // Every extra field has one value per particle and an entry in `info` (its units and
   // description); names must not be reserved (velocity, omega, position, diameter, id,
   // species).
   std::string write(int64_t step, double time, const ParticleTable& table, const ScalarFields& extra = {},
                     const FieldInfos& info = {});
-
-  const std::string& xdmf_path() const { return index_.path(); }
-  std::string snapshot_path(int64_t step) const;
-  std::vector<int64_t> steps() const { return index_.steps(); }
 
  private:
   struct Entry {
@@ -60,11 +57,6 @@ class SnapshotSeries {
   };
   std::string render(const Entry& e) const;
   Entry read_entry(int64_t step) const;  // metadata of an existing snapshot (resume)
-
-  std::string dir_, prefix_;
-  Attributes attributes_;
-  int compression_;
-  XdmfTimeSeries index_;
 };
 
 }  // namespace cgdem::io

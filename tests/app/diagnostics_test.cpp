@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/die_diagnostics.hpp"
+#include "diagnostics/die_diagnostics.hpp"
 #include "app/run_metrics.hpp"
 #include "fluid/fluid_state.hpp"
 
 using namespace cgdem;
 using namespace cgdem::app;
+using namespace cgdem::diagnostics;
 
 namespace {
 

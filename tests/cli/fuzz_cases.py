@@ -17,13 +17,14 @@ documented range, a key with a default); the counts are printed.
 
   fuzz_cases.py --cgdem BUILD/cgdem --root SOURCE --work DIR [--count 200] [--seed 21]
 """
-import argparse
 import os
 import random
 import re
 import subprocess
 import sys
 import time
+
+import cli_script  # tests/cli/cli_script.py: the options and the verdict
 
 SEEDS = [
     "tests/cli/base.toml", "tests/cli/moving_wall.toml", "tests/cli/escape.toml", "tests/cli/mpi_bed_air.toml",
@@ -171,13 +172,7 @@ def judge_accepted(kind, info):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--cgdem", required=True)
-    ap.add_argument("--root", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--count", type=int, default=200)
-    ap.add_argument("--seed", type=int, default=21)
-    args = ap.parse_args()
+    args = cli_script.parse_args("root", "work", count=200, seed=21)
     rng = random.Random(args.seed)
     os.makedirs(args.work, exist_ok=True)
     texts = {s: open(os.path.join(args.root, s), encoding="latin-1").read() for s in SEEDS}

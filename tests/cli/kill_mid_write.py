@@ -18,7 +18,6 @@ the kill) and fails on any unreadable file, failed restart or differing digest.
 
   kill_mid_write.py --cgdem BUILD/cgdem --case tests/cli/base.toml --work DIR [--kills 12] [--seed 7]
 """
-import argparse
 import glob
 import os
 import random
@@ -31,6 +30,8 @@ import time
 import xml.etree.ElementTree as ET
 
 import h5py
+
+import cli_script  # tests/cli/cli_script.py: the options and the verdict
 
 
 def read_all_h5(path):
@@ -74,13 +75,7 @@ def digest(out):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--cgdem", required=True)
-    ap.add_argument("--case", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--kills", type=int, default=12)
-    ap.add_argument("--seed", type=int, default=7)
-    args = ap.parse_args()
+    args = cli_script.parse_args("case", "work", kills=12, seed=7)
     rng = random.Random(args.seed)
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -159,12 +154,11 @@ def main():
     print("%d kills: %d landed while a file was being written (a temporary was left; removed by the next run: %d), "
           "%d before the first checkpoint; unreadable files, failed or differing restarts: %d" % (
               args.kills, mid_write, removed_after, no_checkpoint, len(failures)))
-    for f in failures:
-        print("FAIL " + f)
+    status = cli_script.print_failures(failures)
     if mid_write == 0:
         print("FAIL no kill landed during a write: the test did not test what it says")
         return 1
-    return 1 if failures else 0
+    return status
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ naming the file, and leave the files written before intact and readable.
 
   output_failures.py --cgdem BUILD/cgdem --case tests/cli/base.toml --work DIR
 """
-import argparse
 import glob
 import os
 import resource
@@ -25,6 +24,8 @@ import subprocess
 import sys
 
 import h5py
+
+import cli_script  # tests/cli/cli_script.py: the options and the verdict
 
 
 def limited(nbytes):
@@ -45,11 +46,7 @@ def readable_h5(d):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--cgdem", required=True)
-    ap.add_argument("--case", required=True)
-    ap.add_argument("--work", required=True)
-    args = ap.parse_args()
+    args = cli_script.parse_args("case", "work")
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     env = dict(os.environ, OMP_NUM_THREADS="1")
@@ -149,10 +146,7 @@ def main():
                     failures.append("full file system: the restart failed: " + r.stderr.decode()[-300:])
         finally:
             subprocess.run(["umount", mnt])
-    for f in failures:
-        print("FAIL " + f)
-    print("PASS" if not failures else "FAILED")
-    return 1 if failures else 0
+    return cli_script.verdict(failures)
 
 
 if __name__ == "__main__":

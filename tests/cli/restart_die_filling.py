@@ -10,7 +10,6 @@ eps_old), energy.csv and diagnostics.csv.
 
   restart_die_filling.py --cgdem BUILD/cgdem --case validation/die_filling/case_1_3.toml --work DIR
 """
-import argparse
 import glob
 import os
 import re
@@ -21,6 +20,8 @@ import time
 
 import h5py
 import numpy as np
+
+import cli_script  # tests/cli/cli_script.py: the options and the verdict
 
 T = 8e-3
 
@@ -38,11 +39,7 @@ def last(d, stem):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--cgdem", required=True)
-    ap.add_argument("--case", required=True)
-    ap.add_argument("--work", required=True)
-    args = ap.parse_args()
+    args = cli_script.parse_args("case", "work")
     shutil.rmtree(args.work, ignore_errors=True)
     env = dict(os.environ, OMP_NUM_THREADS="1")
     common = [args.cgdem, "run", args.case, "--set", "air.dx=1.2e-3", "--set", "time.start=0.0",
@@ -92,10 +89,7 @@ def main():
         print("%s: %d rows, identical: %s" % (csv, len(sa), sa == sb))
         if sa != sb:
             failures.append(csv + " differs")
-    for f in failures:
-        print("FAIL " + f)
-    print("PASS: the restarted die filling with air is bit-identical" if not failures else "FAILED")
-    return 1 if failures else 0
+    return cli_script.verdict(failures, "PASS: the restarted die filling with air is bit-identical")
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 # FAIL=ON: must exit non-zero with stderr matching EXPECT and no crash; otherwise must exit
 # 0 with stdout matching EXPECT and write the four report files.
 cmake_minimum_required(VERSION 3.22)
+include(${CMAKE_CURRENT_LIST_DIR}/../clean_error.cmake)
 file(REMOVE_RECURSE ${WORK})
 set(sin32 0 0.195090322 0.3826834324 0.555570233 0.7071067812 0.8314696123 0.9238795325 0.9807852804 1
     0.9807852804 0.9238795325 0.8314696123 0.7071067812 0.555570233 0.3826834324 0.195090322 0 -0.195090322
@@ -40,15 +41,7 @@ string(REPLACE "%WORK%" "${WORK}" args "${ARGS}")
 execute_process(COMMAND ${CGDEM} spectrum ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("cgdem spectrum ${args}\nexit code ${rc}\nstdout:\n${out}\nstderr:\n${err}")
 if(FAIL)
-  if(rc EQUAL 0)
-    message(FATAL_ERROR "expected a non-zero exit")
-  endif()
-  if(NOT err MATCHES "${EXPECT}")
-    message(FATAL_ERROR "stderr does not match the expected message: ${EXPECT}")
-  endif()
-  if(err MATCHES "terminate called|Segmentation|Aborted")
-    message(FATAL_ERROR "crashed instead of a clean error")
-  endif()
+  cgdem_check_clean_error("${rc}" "${err}" "${EXPECT}" "")
   return()
 endif()
 if(NOT rc EQUAL 0)

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/die_diagnostics.hpp"
+#include "diagnostics/die_diagnostics.hpp"
 #include "fluid/bubbles.hpp"
 #include "fluid/fluid_state.hpp"
 
 using namespace cgdem;
-using namespace cgdem::app;
+using namespace cgdem::diagnostics;
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "app/die_diagnostics.hpp"
+#include "diagnostics/die_diagnostics.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace cgdem::app {
+namespace cgdem::diagnostics {
 
 DiagnosticsSpec read_diagnostics(Config& cfg) {
   DiagnosticsSpec d;
@@ -346,4 +346,4 @@ std::string DieDiagnostics::impact_rows() const {
   return rows;
 }
 
-}  // namespace cgdem::app
+}  // namespace cgdem::diagnostics
