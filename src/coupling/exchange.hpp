@@ -224,6 +224,8 @@ class Exchange {
   };
   void deposit_plain_capacity(int i, int j, int k, fluid::Field& cap) const;
   int cell_capacity_items(int i, int j, int k, double r, CapacityItem* out) const;
+  void add_cell_capacities(const std::vector<std::array<int, 3>>& cells, double r,
+                           const std::vector<unsigned char>& near, fluid::Field& raw) const;
   bool reachable_part(const Vec3& c, double h, double r, double& frac, Vec3& centroid) const;
   // Face mean of the capacity C on face (i, j, k) of axis d (1 where not normalized).
   double face_capacity(int d, int i, int j, int k) const;

@@ -170,6 +170,31 @@ int Exchange::cell_capacity_items(int i, int j, int k, double r, CapacityItem* o
   return n;
 }
 
+// Adds the capacity deposits of `cells` (in the order given) to raw. The sub-cubes of the
+// cells near walls are evaluated in parallel (the costly part: phi and its gradient), a
+// chunk of cells at a time, and added one cell after the other in the given order: the
+// same additions in the same order as a serial loop, so raw is bitwise the same for any
+// thread count.
+void Exchange::add_cell_capacities(const std::vector<std::array<int, 3>>& cells, double r,
+                                   const std::vector<unsigned char>& near, fluid::Field& raw) const {
+  constexpr size_t kChunk = 1024, kItems = kSub * kSub * kSub;
+  std::vector<CapacityItem> items(std::min(cells.size(), kChunk) * kItems);
+  std::vector<int> count(std::min(cells.size(), kChunk));  // -1: a plain cell
+  for (size_t c0 = 0; c0 < cells.size(); c0 += kChunk) {
+    const long m = static_cast<long>(std::min(kChunk, cells.size() - c0));
+#pragma omp parallel for schedule(dynamic, 16)
+    for (long q = 0; q < m; ++q) {
+      const auto [i, j, k] = cells[c0 + q];
+      count[q] = plain_cell(i, j, k, near) ? -1 : cell_capacity_items(i, j, k, r, &items[q * kItems]);
+    }
+    for (long q = 0; q < m; ++q) {
+      const auto [i, j, k] = cells[c0 + q];
+      if (count[q] < 0) deposit_plain_capacity(i, j, k, raw);
+      for (int e = 0; e < count[q]; ++e) deposit(items[q * kItems + e].w, items[q * kItems + e].v, raw);
+    }
+  }
+}
+
 void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
   const std::array<int, 3> n = g_.n();
   // Nodes that need it: holding solid, with a non-plain cell within the kernel's reach.
@@ -224,31 +249,12 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
               dep(x, y, z) = 1;
             }
       }
-  // The sub-cubes of the cells near walls are evaluated in parallel (the costly part: phi
-  // and its gradient), a chunk of cells at a time, and added to raw one cell after the
-  // other in index order: the same additions in the same order as a serial loop, so the
-  // result is bitwise the same for any thread count.
   std::vector<std::array<int, 3>> cells;
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i)
         if (dep(i, j, k) == 1) cells.push_back({i, j, k});
-  constexpr size_t kChunk = 1024, kItems = kSub * kSub * kSub;
-  std::vector<CapacityItem> items(std::min(cells.size(), kChunk) * kItems);
-  std::vector<int> count(std::min(cells.size(), kChunk));  // -1: a plain cell
-  for (size_t c0 = 0; c0 < cells.size(); c0 += kChunk) {
-    const long m = static_cast<long>(std::min(kChunk, cells.size() - c0));
-#pragma omp parallel for schedule(dynamic, 16)
-    for (long q = 0; q < m; ++q) {
-      const auto [i, j, k] = cells[c0 + q];
-      count[q] = is_plain(i, j, k) ? -1 : cell_capacity_items(i, j, k, r, &items[q * kItems]);
-    }
-    for (long q = 0; q < m; ++q) {
-      const auto [i, j, k] = cells[c0 + q];
-      if (count[q] < 0) deposit_plain_capacity(i, j, k, raw);
-      for (int e = 0; e < count[q]; ++e) deposit(items[q * kItems + e].w, items[q * kItems + e].v, raw);
-    }
-  }
+  add_cell_capacities(cells, r, near, raw);
   if (sync_) sync_->sum_deposits(raw, fluid::kCells);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
