@@ -94,7 +94,10 @@ Budget read_budget(const std::string& path, const std::string& label, double rat
   b.q["e_damp"] = per_mass("E_diss_damping", true);
   b.q["e_fric"] = per_mass("E_diss_friction", true);
   b.q["w_walls"] = per_mass("W_walls", true);
-  b.q["w_air"] = c.has("W_air") ? per_mass("W_air", true) : std::vector<double>(b.t.size(), 0.0);
+  if (c.has("W_air"))
+    b.q["w_air"] = per_mass("W_air", true);
+  else  // a vacuum run: no air did work (an if, not ?:, which GCC 12 misreads as a free of a non-heap object)
+    b.q["w_air"].assign(b.t.size(), 0.0);
   b.q["v_x"] = per_mass("px", false);
   b.q["v_y"] = per_mass("py", false);
   b.q["v_z"] = per_mass("pz", false);
