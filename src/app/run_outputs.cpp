@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -199,7 +200,8 @@ void RunOutputs::snapshot() {
 // from then on; before then, no field.
 io::ScalarFields RunOutputs::tracer(const io::ParticleTable& t) {
   if (tracer_id_.empty()) {
-    if (s_.dem().time() < c_.output.tracer_time * (1 - 1e-12) - 1e-15) return {};
+    const double tt = c_.output.tracer_time;  // with a slack for the round-off of the snapshot times
+    if (s_.dem().time() < tt - 1e-12 * std::max(1.0, std::fabs(tt))) return {};
     tracer_id_ = t.id;
     tracer_z_.resize(t.size());
     for (size_t i = 0; i < t.size(); ++i) tracer_z_[i] = t.x[i].z;
