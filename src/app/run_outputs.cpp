@@ -26,12 +26,13 @@ std::string in_folder(const std::string& dir, const std::string& name) {
 
 // The tracer of the newest snapshot of `dir` at or before `step` that carries one (ids and
 // heights in id order); empty when none does.
-void read_tracer(const std::string& dir, int64_t step, std::vector<int64_t>& ids, std::vector<double>& z) {
+void read_tracer(const io::SnapshotSeries& series, const std::string& dir, int64_t step, std::vector<int64_t>& ids,
+                 std::vector<double>& z) {
   ids.clear(), z.clear();
   std::vector<int64_t> steps = io::find_snapshot_steps(dir, "particles");
   for (auto it = steps.rbegin(); it != steps.rend(); ++it) {
     if (*it > step) continue;
-    const std::string path = io::snapshot_file_name(dir + "/particles", *it);
+    const std::string path = series.snapshot_path(*it);
     io::h5::Quiet quiet;
     io::h5::Id file = io::h5::open_file(path);
     if (!io::h5::exists(file, "fields/" + std::string(RunOutputs::kTracer))) continue;
@@ -73,7 +74,7 @@ RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const Diagnost
     if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
     if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
     // A restart after the tracer was taken continues with the one its snapshots carry.
-    if (ctx_.restart) read_tracer(dir, s_.dem().steps(), tracer_id_, tracer_z_);
+    if (ctx_.restart) read_tracer(*snapshots_, dir, s_.dem().steps(), tracer_id_, tracer_z_);
   });
 }
 

@@ -8,10 +8,7 @@ if(CGDEM_SYSTEM_PYTHON3)
                    ${PROJECT_SOURCE_DIR}/tests/cli/base.toml ${PROJECT_BINARY_DIR}/cli_out/h5_outputs)
   set_tests_properties(cli.h5_outputs_describe_themselves PROPERTIES LABELS cli ENVIRONMENT "OMP_NUM_THREADS=1"
                        PASS_REGULAR_EXPRESSION "all checks passed")
-endif()
-
-# The tracer z_start (output.tracer_time) in the particle snapshots, straight and restarted.
-if(CGDEM_SYSTEM_PYTHON3)
+  # The tracer z_start (output.tracer_time) in the particle snapshots, straight and restarted.
   add_test(NAME cli.tracer_carries_start_height
            COMMAND ${CGDEM_SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/tests/cli/tracer.py $<TARGET_FILE:cgdem>
                    ${PROJECT_SOURCE_DIR}/tests/cli/base.toml ${PROJECT_BINARY_DIR}/cli_out/tracer)
