@@ -90,8 +90,28 @@ void read_pressure(const Section& ps, AirCase& a) {
       ps.string_or("mpi_preconditioner", "auto", {"auto", "pfmg", "bj-mg", "bj-mg2", "bj-fft", "as-mg", "as-mg2", "none"});
 }
 
+// The still air's pressure on an open side: open_pressure is the pressure on the top plane
+// (z_max; the plane the gravity points away from), and a side below it carries the weight of
+// the air between them, rho g . (x_side - x_top), so that air at rest stays at rest between
+// two open sides. An open side along which gravity has a component would need a pressure that
+// varies over it (one value per side is what the pressure solve takes): refused.
+double still_air_pressure(const Section& bs, const char* name, int side, double p_open, const DemParams& dem,
+                          double rho) {
+  const int axis = side / 2;
+  const Vec3& g = dem.gravity;
+  for (int b = 0; b < 3; ++b)
+    if (b != axis && g[b] != 0)
+      bs.fail(name, fmt::format("an open side must be normal to gravity ({}, {}, {}) m/s^2: the still air's pressure "
+                                "would vary along it",
+                                g.x, g.y, g.z));
+  if (g[axis] == 0) return p_open;
+  const double x_side = side % 2 == 0 ? dem.domain.lo[axis] : dem.domain.hi[axis];
+  const double x_top = g[axis] < 0 ? dem.domain.hi[axis] : dem.domain.lo[axis];
+  return p_open + rho * g[axis] * (x_side - x_top);
+}
+
 // [air.boundary]: the six sides (periodic exactly where the DEM domain is; by default walls
-// and an open top) at the one open pressure. Writes a.fluid.bc.
+// and an open top), open sides at the still air's pressure. Writes a.fluid.bc.
 void read_boundary(const Section& bs, const DemParams& dem, AirCase& a) {
   fluid::FluidParams& f = a.fluid;
   const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
@@ -100,7 +120,8 @@ void read_boundary(const Section& bs, const DemParams& dem, AirCase& a) {
     const int axis = side / 2;
     const std::string def = dem.periodic[axis] ? "periodic" : (side == 5 ? "open" : "wall");
     f.bc[side].type = side_type(bs, names[side], def);
-    f.bc[side].pressure = p_open;
+    f.bc[side].pressure =
+        f.bc[side].type == fluid::BcType::Open ? still_air_pressure(bs, names[side], side, p_open, dem, f.rho) : p_open;
     if ((f.bc[side].type == fluid::BcType::Periodic) != dem.periodic[axis])
       bs.fail(names[side], fmt::format("must be \"periodic\" exactly when the {} axis is periodic in domain.periodic",
                                        "xyz"[axis]));

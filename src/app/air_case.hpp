@@ -35,7 +35,9 @@
 //                   (1 .. 1000), depth = 1 (Anderson depth, 0 .. 20; docs/coupling.md
 //                   says why 1)
 //   [air.boundary]  x_min = "wall" | "open" | "periodic", x_max, y_min, y_max, z_min,
-//                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa, |p| <= 1e7)
+//                   z_max (default: walls, z_max open); open_pressure = 0.0 (Pa, |p| <= 1e7),
+//                   the still air's pressure on the top plane: a lower open side adds the
+//                   weight of the air above it; an open side must be normal to gravity
 #pragma once
 #include "core/config.hpp"
 #include "coupling/exchange.hpp"

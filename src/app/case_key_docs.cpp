@@ -177,7 +177,7 @@ std::vector<KeyDoc> air_keys() {
     {"air.pressure.mpi_preconditioner", "",
      "over MPI ranks only: preconditioner of the distributed solve; auto: as-mg2 on up to 4 ranks, pfmg beyond "
      "when built with hypre (docs/scale_out.md)"},
-    {"air.boundary.open_pressure", "Pa", "pressure at the open sides"},
+    {"air.boundary.open_pressure", "Pa", "pressure of the still air at the top plane; a lower open side adds the weight of the air above it (an open side must be normal to gravity)"},
     {"air.boundary.x_min", "", "the domain's side at x = min", "`\"wall\"` (`\"periodic\"` on a periodic axis)"},
     {"air.boundary.x_max", "", "the side at x = max", "`\"wall\"` (`\"periodic\"` on a periodic axis)"},
     {"air.boundary.y_min", "", "the side at y = min", "`\"wall\"` (`\"periodic\"` on a periodic axis)"},

@@ -12,8 +12,8 @@ const FieldInfo* air_field_info(const std::string& name) {
   static const FieldInfos known = {
       {"eps", {"1", "air volume fraction (void fraction) of the cell: 1 minus the parcels' volume fraction"}},
       {"p",
-       {"Pa", "air pressure at the cell centre, relative to the open sides' pressure (air.sides "
-              "open_pressure, 0 by default); it includes the hydrostatic part"}},
+       {"Pa", "air pressure at the cell centre, relative to the still air's pressure on the top plane "
+              "(air.boundary.open_pressure, 0 by default); it includes the hydrostatic part"}},
       {"alpha", {"1", "wall fraction of the cell (immersed boundary): 0 all fluid, 1 inside a wall"}},
       {"u",
        {"m/s", "interstitial air velocity (x, y, z) at the cell centre: mean of the two MAC face values of each "
