@@ -9,6 +9,8 @@
 // Wall boundary faces keep their prescribed normal velocity (coefficient 0).
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "solvers/fluid/fluid_solver.hpp"
 
 namespace cgdem::fluid {
@@ -18,10 +20,10 @@ namespace cgdem::fluid {
 // correction factor c_f = (1 - alpha_f) E_f / (E_f rho/dt + K_f) = a_f / E_f is kept beside it
 // (the same expression the correction evaluated face by face before).
 void FluidSolver::set_pressure_coefficients(const Sources& src, double dt) {
-  auto t = timers_.scope("pressure coefficients");
-  const double rho = params_.rho;
   std::array<std::vector<double>*, 3> coef{&ax_, &ay_, &az_};
   bool changed = !coeffs_set_;
+  std::optional<PhaseTimers::Scope> t(std::in_place, timers_, timers_.id("pressure coefficients"));
+  const double rho = params_.rho;
   for (int d = 0; d < 3; ++d) {
     std::array<int, 3> e = g_.face_extent(d);
     std::vector<double>& next = next_[d];
@@ -59,6 +61,7 @@ void FluidSolver::set_pressure_coefficients(const Sources& src, double dt) {
     changed = changed || diff;
   }
   changed = sync_->any(changed);  // the set-up is collective over the ranks
+  t.reset();  // the set-up is a phase of its own, not a part of this one
   if (changed) {
     for (int d = 0; d < 3; ++d) coef[d]->swap(next_[d]);
     auto ts = timers_.scope("pressure set-up");
