@@ -147,9 +147,10 @@ CheckpointReader::CheckpointReader(CheckpointReader&&) noexcept = default;
 CheckpointReader::~CheckpointReader() = default;
 
 void CheckpointReader::restore(ParticleStepper& s, const LoadObservers& observers) {
-  if (with_air_ != s.with_air())
-    throw Error(fmt::format("checkpoint {} was written by a run {} air, the case runs {} air", path_,
-                            with_air_ ? "with" : "without", s.with_air() ? "with" : "without"));
+  // A state settled in vacuum may go on with air (the air starts at rest around the parcels,
+  // as in a fresh run); the other way round would drop the air's momentum and is refused.
+  if (with_air_ && !s.with_air())
+    throw Error(fmt::format("checkpoint {} was written by a run with air, the case runs without air", path_));
   if (exact_ && s.comm().size() == 1) {
     restore_exactly(s);
     observers(*r_);
@@ -167,7 +168,10 @@ void CheckpointReader::restore_exactly(ParticleStepper& s) {
   s.make_air();
   s.dem().load(*r_);
   check_count(s.dem().particles().size(), s.dem().removed(), in_case);
-  if (with_air_) get_air(*r_, s.air());
+  if (with_air_)
+    get_air(*r_, s.air());
+  else
+    s.make_air();  // air at rest, its void fraction from the parcels just loaded (no-op in vacuum)
 }
 
 // Any other pairing: the parcels in id order, handed out to the ranks that own them.

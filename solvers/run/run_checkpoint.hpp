@@ -53,10 +53,12 @@ class CheckpointReader {
   const std::string& revision() const { return revision_; }
   int ranks() const { return position_.ranks; }  // that wrote it
   bool exact() const { return exact_; }
+  bool with_air() const { return with_air_; }
 
   // Collective: the whole set-up of `s` (ParticleStepper steps 1-3) in the checkpoint's
   // state, then the observers'. Throws cgdem::Error when the checkpoint does not belong to
-  // the case (parcel count, air grid, with or without air).
+  // the case (parcel count, air grid, air in the checkpoint but not in the case). A
+  // checkpoint without air restarts a case with air: the air starts at rest at its time.
   void restore(ParticleStepper& s, const LoadObservers& observers);
 
  private:

@@ -154,6 +154,9 @@ void ParticleRun::restore() {
   }
   from->restore(*s_, [&](io::ArchiveReader& r) { RunOutputs::load_observers(r, diag_, counters_); });
   written_on_ = from->ranks();
+  if (comm_.root() && air_.enabled && !from->with_air())
+    fmt::print("cgdem: {} holds no air (a run in vacuum): the air starts at rest around its parcels at t = {:.6g} s\n",
+               info_.restart, s_->dem().time());
 }
 
 void ParticleRun::print_banner(double setup_seconds) {

@@ -50,6 +50,11 @@ foreach(variant vacuum air air_implicit_drag moving_wall)
                    -P ${PROJECT_SOURCE_DIR}/tests/cli/restart.cmake)
   set_tests_properties(cli.restart_is_bit_identical_${variant} PROPERTIES LABELS cli)
 endforeach()
+# A state settled in vacuum continues with air; an air checkpoint does not continue in vacuum.
+add_test(NAME cli.vacuum_checkpoint_continues_with_air
+         COMMAND ${CMAKE_COMMAND} -DCGDEM=$<TARGET_FILE:cgdem> -DCASE=${PROJECT_SOURCE_DIR}/tests/cli/base.toml
+                 -DWORK=${PROJECT_BINARY_DIR}/cli_out/air_after_vacuum -P ${PROJECT_SOURCE_DIR}/tests/cli/air_after_vacuum.cmake)
+set_tests_properties(cli.vacuum_checkpoint_continues_with_air PROPERTIES LABELS cli)
 # Parcels leaving the domain are announced and counted.
 add_test(NAME cli.escaping_parcels_are_reported
          COMMAND $<TARGET_FILE:cgdem> run ${PROJECT_SOURCE_DIR}/tests/cli/escape.toml --output ${PROJECT_BINARY_DIR}/cli_out/escape)
