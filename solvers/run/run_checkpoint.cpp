@@ -165,7 +165,7 @@ void CheckpointReader::restore(ParticleStepper& s, const LoadObservers& observer
 void CheckpointReader::restore_exactly(ParticleStepper& s) {
   const size_t in_case = s.dem().particles().size();
   s.place_parcels();
-  s.make_air();
+  if (with_air_) s.make_air();  // made before the load, as the run that wrote it made it
   s.dem().load(*r_);
   check_count(s.dem().particles().size(), s.dem().removed(), in_case);
   if (with_air_)

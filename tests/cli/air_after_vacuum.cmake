@@ -1,7 +1,6 @@
 # A state settled in vacuum continues with air (solvers/run/run_checkpoint.hpp): the restart
 # says that the air starts at rest, the parcels are those of the checkpoint, the air then does
-# work on them; and an
-# air checkpoint is refused by a case in vacuum, with the reason.
+# work on them; and an air checkpoint is refused by a case in vacuum, with the reason.
 #   -DCGDEM=... -DCASE=... -DWORK=...
 file(REMOVE_RECURSE ${WORK})
 set(common run ${CASE} --set output.checkpoint_interval=1e-3)
