@@ -2,7 +2,7 @@
 """Fill ratio against shoe speed, in vacuum and with air (issue #17, item 3).
 
 Case: shoe_slab.toml beside this script (the paper's shoe over a simple die 10 mm long and
-7 mm deep, a 4.8 mm slab periodic in y, l = 3). For each ratio l:
+7 mm deep, a 2.4 mm slab periodic in y, l = 3). For each ratio l:
   settle      t = -0.15 .. 0 s in vacuum, the shoe at rest: settled.bin
   vacuum_v    --restart settle/settled.bin, shoe speed v, in vacuum
   air_v       the same with air (the air starts at rest around the settled bed)
@@ -101,6 +101,16 @@ def command(cgdem, args, out):
     return [cgdem, "run", CASE, *args, "--threads", "1", "--output", out]
 
 
+MACHINE_JOBS = None   # --machine-jobs: at most this many cgdem processes on the machine, ours or not
+
+
+def machine_busy(running):
+    if MACHINE_JOBS is None:
+        return False
+    n = subprocess.run(["pgrep", "-c", "cgdem"], capture_output=True, text=True).stdout.strip()
+    return int(n or 0) >= MACHINE_JOBS
+
+
 def run_batch(jobs, todo):
     """Runs the (command, out) pairs, `jobs` at a time; stops at the first failure."""
     running, pending = [], []
@@ -111,7 +121,7 @@ def run_batch(jobs, todo):
             pending.append((cmd, out))
     todo = pending
     while todo or running:
-        while todo and len(running) < jobs:
+        while todo and len(running) < jobs and not machine_busy(running):
             cmd, out = todo.pop(0)
             log = open(out + ".log", "w")
             p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, env={**os.environ, "OMP_NUM_THREADS": "1"})
@@ -320,7 +330,7 @@ def plot(out, df, ff):
 
 
 def main():
-    global CASE
+    global CASE, MACHINE_JOBS
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--cgdem", default=os.path.join("build", "cgdem"))
     ap.add_argument("--out", default=os.path.join("out", "fill_ratio"))
@@ -328,10 +338,12 @@ def main():
     ap.add_argument("--speeds", default=",".join(f"{v:g}" for v in SPEEDS))
     ap.add_argument("--modes", default="vacuum,air")
     ap.add_argument("--jobs", type=int, default=1, help="runs side by side (one thread each)")
+    ap.add_argument("--machine-jobs", type=int, help="start a run only while fewer cgdem processes than this run "
+                    "on the machine (other jobs included)")
     ap.add_argument("--case", default=CASE, help="the case file (default: shoe_slab.toml beside this script)")
     ap.add_argument("--analyse-only", action="store_true")
     a = ap.parse_args()
-    CASE = a.case
+    CASE, MACHINE_JOBS = a.case, a.machine_jobs
     ratios = [int(x) for x in a.ratios.split(",")]
     speeds = [float(x) for x in a.speeds.split(",")]
     if not a.analyse_only:

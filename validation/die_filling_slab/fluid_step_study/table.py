@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """The fluid-step study table from `cgdem compare` output and the runs' logs.
 
-Usage: table.py COMPARE_DIR LOG_DIR > table.md
+Usage: table.py COMPARE_DIR LOG_DIR [PRESSURE_COMPARE_DIR] > table.md
 
 COMPARE_DIR holds metrics_compare.csv and curves_distance.csv of
 `cgdem compare REF RUN...` (REF: the semi-implicit run at 1e-4 s); LOG_DIR holds
 <label>.log, the standard output of each `cgdem run` (its final report: fluid steps,
-pressure iterations, implicit drag solves, per-phase wall time).
+pressure iterations, implicit drag solves, per-phase wall time). PRESSURE_COMPARE_DIR, if
+given, is a second `cgdem compare` of the same runs over another time range (`--from`),
+whose cell-B distance the table reports instead (for example without the die's sealed,
+pre-opening phase).
 """
 import csv
 import re
@@ -37,6 +40,9 @@ def main():
     cmp_dir, log_dir = Path(sys.argv[1]), Path(sys.argv[2])
     metrics = {r["metric"]: r for r in read_csv(cmp_dir / "metrics_compare.csv")}
     dist = read_csv(cmp_dir / "curves_distance.csv")
+    if len(sys.argv) > 3:  # cell B's distance from the second comparison
+        dist = [r for r in dist if r["curve"] != "p_B"] + \
+            [r for r in read_csv(Path(sys.argv[3]) / "curves_distance.csv") if r["curve"] == "p_B"]
     runs = [k for k in metrics["front_time_s"] if k not in ("metric", "unit") and ":" not in k]
     ref = runs[0]
 
