@@ -14,4 +14,10 @@ if(CGDEM_SYSTEM_PYTHON3)
                    ${PROJECT_SOURCE_DIR}/tests/cli/base.toml ${PROJECT_BINARY_DIR}/cli_out/tracer)
   set_tests_properties(cli.tracer_carries_start_height PROPERTIES LABELS cli ENVIRONMENT "OMP_NUM_THREADS=1"
                        PASS_REGULAR_EXPRESSION "all checks passed")
+  # validation/die_filling/origin.py (the shoe layer the die's powder started in) on a
+  # snapshot made by hand whose shares are known.
+  add_test(NAME cli.origin_layers_counted
+           COMMAND ${CGDEM_SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/tests/cli/origin_layers.py
+                   ${PROJECT_BINARY_DIR}/cli_out/origin_layers)
+  set_tests_properties(cli.origin_layers_counted PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "all checks passed")
 endif()

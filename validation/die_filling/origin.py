@@ -13,10 +13,15 @@ the mouth), the share that started in each layer:
   * its top layer: in each of ten columns across the mouth (along the shoe's motion) the
     highest third of the column's parcels (so a stepped floor and a partial fill are
     handled alike);
-  * the half of the die the cavity reaches first and the half it reaches last.
-The reference (Guo et al., moving-shoe DEM-CFD): in vacuum the die's leading side fills
-from the shoe's top layer (nose flow); with air a bubble is held in the die and its top
-fills mainly from the shoe's bottom layer.
+  * the half of the die the cavity reaches first and the half it reaches last;
+  * in the shoe, the bottom 3 mm of the bed within 2 mm of the cavity's front wall and of its
+    rear wall (a nose, the bed's front slumping so that its top layer cascades down to the
+    table, shows as top-layer parcels at the front wall's foot).
+With --profile, the bed's surface height over the cavity in ten bins as well.
+The reference (Guo et al., moving-shoe DEM-CFD): in vacuum the die's leading side (read
+here as the side the shoe travels towards, the half reached last) fills from the shoe's top
+layer (nose flow), the trailing side from its bottom layer (bulk flow); with air a bubble
+is held in the die and its top fills mainly from the shoe's bottom layer.
 Prints a Markdown table (and writes it to --output when given).
 """
 import argparse
@@ -75,7 +80,31 @@ def analyse(run, t):
     first = in_die & (x[:, 0] < x0 + 0.5 * length)
     rows = {"die": shares(layer, in_die), "die, top layer": shares(layer, upper),
             "half reached first": shares(layer, first), "half reached last": shares(layer, in_die & ~first)}
-    return tf, surface - top, rows
+    # The shoe's bed: a nose (the bed's front slumping, its top layer cascading down to the
+    # table) shows as top-layer parcels in the bottom 3 mm next to the cavity's front wall.
+    c0 = die["cavity_x0"] + shoe_travel(die, tf)
+    c1 = c0 + die["cavity_size"][0]
+    in_shoe = (x[:, 2] > top) & (x[:, 0] > c0) & (x[:, 0] < c1)
+    low = in_shoe & (x[:, 2] < top + 3e-3)
+    rows["shoe, bottom 3 mm at the front wall (2 mm)"] = shares(layer, low & (x[:, 0] > c1 - 2e-3))
+    rows["shoe, bottom 3 mm at the rear wall (2 mm)"] = shares(layer, low & (x[:, 0] < c0 + 2e-3))
+    profile = []
+    for k in range(10):   # the bed's surface over the cavity, rear to front: 99th percentile of z
+        a = c0 + k * (c1 - c0) / 10
+        sel = in_shoe & (x[:, 0] >= a) & (x[:, 0] < a + (c1 - c0) / 10)
+        profile.append(np.percentile(x[sel, 2], 99) - top if sel.sum() > 5 else float("nan"))
+    return tf, surface - top, rows, profile
+
+
+def shoe_travel(die, t):
+    """The shoe's displacement at t: at rest until shoe_start, its speed ramped linearly to
+    shoe_speed over shoe_ramp (the motion of src/geometry/die_filling.hpp)."""
+    v, t0, ramp = die.get("shoe_speed", 0.0), die.get("shoe_start", 0.0), die.get("shoe_ramp", 1e-3)
+    if t <= t0:
+        return 0.0
+    if t <= t0 + ramp:
+        return 0.5 * v * (t - t0) ** 2 / ramp
+    return v * (t - t0 - 0.5 * ramp)
 
 
 def main():
@@ -83,16 +112,24 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--times", default="0.15,0.30", help="snapshot times [s], comma-separated (the nearest is used)")
     ap.add_argument("--output")
+    ap.add_argument("--profile", action="store_true", help="also the shoe bed's surface profile over the cavity")
     a = ap.parse_args()
+    profiles = []
     lines = ["| run | t [s] | bed height at tracer time [mm] | parcels of | count | from bottom [%] | middle [%] | top [%] |",
              "|---|---|---|---|---|---|---|---|"]
     for run in a.runs:
         for t in (float(s) for s in a.times.split(",")):
-            tf, bed, rows = analyse(run, t)
+            tf, bed, rows, profile = analyse(run, t)
+            name = os.path.basename(os.path.normpath(run))
             for what, (n, s) in rows.items():
-                lines.append(f"| {os.path.basename(os.path.normpath(run))} | {tf:.3f} | {bed * 1e3:.2f} | {what} | {n} | "
+                lines.append(f"| {name} | {tf:.3f} | {bed * 1e3:.2f} | {what} | {n} | "
                              f"{s[0]:.1f} | {s[1]:.1f} | {s[2]:.1f} |")
+            profiles.append(f"| {name} | {tf:.3f} | " + " | ".join(f"{1e3 * h:.1f}" for h in profile) + " |")
     text = "\n".join(lines) + "\n"
+    if a.profile:
+        text += ("\nThe shoe's bed surface over the cavity [mm above the table], ten bins from the rear wall "
+                 "to the front wall:\n\n| run | t [s] | " + " | ".join(str(k + 1) for k in range(10)) + " |\n|"
+                 + "---|" * 12 + "\n" + "\n".join(profiles) + "\n")
     print(text, end="")
     if a.output:
         with open(a.output, "w") as f:
