@@ -1,7 +1,8 @@
 // The implicit drag coupling (solvers/coupled/implicit_drag.hpp) against closed forms.
 //
 // 1. The KINSOL driver alone on u = cos(u) per component (root 0.739085133215161), both
-//    methods: converged to the tolerance, the iteration counts printed.
+//    methods: converged to the tolerance, the iteration counts printed; and the error after
+//    k iterations: quadratic for Newton, super-linear for Anderson.
 // 2. One step of air through a fixed, uniform packed bed (periodic box, parcels at rest on
 //    a lattice that maps eps = 0.4 exactly, Ergun branch, d_O = 125 um). With no pressure
 //    gradient, advection or shear the x-face equation of the step is scalar:
@@ -114,6 +115,43 @@ TEST(ImplicitDrag, KinsolFindsTheFixedPointOfCosine) {
     EXPECT_TRUE(st.converged);
     EXPECT_LT(err, 1e-11);
     EXPECT_LT(st.evaluations, 40);  // plain iteration (rate 0.67) would need ~70
+  }
+}
+
+// The order of convergence of the two methods, on u = cos(u) from u0 = 1 (error 0.26): each
+// run stops after k = 1, 2, ... iterations (max_iterations = k, a tolerance no run reaches
+// before the error is at round-off), and its last evaluated iterate's error against the root
+// is e_k. Newton's method (Jacobian-vector products by difference quotients) must converge
+// quadratically while the error is above the difference quotients' noise (1e-7):
+// e_{k+1} <= e_k^2 (this map's constant is 0.22). Anderson of depth 1 is, for one unknown,
+// the secant method (order 1.62); its first iteration is a plain step, whose iterate its
+// second evaluation sees, so from the third on it must be super-linear: e_{k+1} <= e_k^1.3.
+// Printed: the errors and the observed orders log(e_{k+1}) / log(e_k).
+TEST(ImplicitDrag, NewtonConvergesQuadraticallyAndAndersonSuperlinearly) {
+  const double root = 0.739085133215161;
+  for (const char* method : {"newton", "anderson"}) {
+    const bool newton = std::string(method) == "newton";
+    std::vector<double> e;
+    for (int k = 1; k <= (newton ? 4 : 6); ++k) {
+      ImplicitDragOptions o;
+      o.method = method;
+      o.tol = 1e-300;
+      o.max_iterations = k;
+      ImplicitDragSolver solver(1, o);
+      std::vector<double> u{1.0};
+      const auto st = solver.solve([](const double* in, double* out) { out[0] = std::cos(in[0]); }, u);
+      if (!st.converged) EXPECT_EQ(st.iterations, k);  // else the residual reached exactly 0
+      e.push_back(std::fabs(u[0] - root));
+    }
+    std::string line;
+    for (size_t k = 0; k < e.size(); ++k)
+      line += fmt::format(" e{} = {:.2e}{}", k + 1, e[k],
+                          k ? fmt::format(" (order {:.2f})", std::log(e[k]) / std::log(e[k - 1])) : std::string());
+    std::printf("[ implicit drag ] u = cos(u) from 1.0, %s, error after k iterations:%s\n", method, line.c_str());
+    for (size_t k = newton ? 1 : 2; k < e.size(); ++k) {
+      if (e[k - 1] < 1e-7) break;  // below it the difference quotients' noise sets the error
+      EXPECT_LE(e[k], std::pow(e[k - 1], newton ? 2.0 : 1.3)) << method << ", iteration " << k + 1;
+    }
   }
 }
 
