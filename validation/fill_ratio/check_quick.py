@@ -27,9 +27,9 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     run_sweep.CASE = os.path.join(HERE, "shoe_slab_quick.toml")
     slow, fast = q["slow"], q["fast"]
-    run_sweep.run_all(cgdem, work, [3], [slow], ["vacuum", "air"], 1)
-    run_sweep.run_all(cgdem, work, [3], [fast], ["vacuum"], 1)
-    df, _ = run_sweep.analyse(work, [3], [slow, fast])
+    run_sweep.run_all(cgdem, work, [(run_sweep.D_REF, 3.0)], [slow], ["vacuum", "air"], 1)
+    run_sweep.run_all(cgdem, work, [(run_sweep.D_REF, 3.0)], [fast], ["vacuum"], 1)
+    df, _ = run_sweep.analyse(work, [(run_sweep.D_REF, 3.0)], [slow, fast])
     d = {(r["mode"], r["v_m_s"]): r["delta"] for _, r in df.iterrows()}
     checks = [
         (f"slow pass ({slow} m/s) in vacuum fills the die: delta = {d['vacuum', slow]:.3f} >= {q['delta_full_min']}",

@@ -31,6 +31,7 @@ standard error (first-order propagation for v_c).
 
 Usage (from the repository root; one thread per run, --jobs runs side by side):
     /usr/bin/python3 validation/fill_ratio/run_sweep.py [--speeds 0.5,0.3,...] [--ratios 3,2] [--jobs 2]
+    /usr/bin/python3 validation/fill_ratio/run_sweep.py --systems 250:1.5,375:1 [--modes air] ...
     /usr/bin/python3 validation/fill_ratio/run_sweep.py --analyse-only
 Writes OUT/fill_ratio_table.csv, OUT/fill_ratio_fit.csv, OUT/fill_ratio_table.md and
 OUT/fill_ratio.png.
@@ -67,12 +68,21 @@ def t_end(case, v):
     return (travel + 0.5 * (w["shoe_wall"] - w["mouth_length"])) / v + w.get("shoe_ramp", 1e-3)
 
 
-def settle_dir(out, l):
-    return os.path.join(out, f"settle_l{l}")
+D_REF = 125.0   # um, the paper's particle: systems of this size keep the folder names "l3", "l2"
 
 
-def full_dir(out, l):
-    return os.path.join(out, f"full_l{l}")
+def tag(sysm):
+    """Folder tag of a system (d_O in um, ratio l): "l3" for the paper's 125 um, "d250_l1.5" otherwise."""
+    d, l = sysm
+    return f"l{l:g}" if d == D_REF else f"d{d:g}_l{l:g}"
+
+
+def settle_dir(out, sysm):
+    return os.path.join(out, f"settle_{tag(sysm)}")
+
+
+def full_dir(out, sysm):
+    return os.path.join(out, f"full_{tag(sysm)}")
 
 
 def full_sets(case):
@@ -89,12 +99,20 @@ def full_sets(case):
             "--set", f"particles.insert[0].min={fmt(lo)}", "--set", f"particles.insert[0].max={fmt(hi)}"]
 
 
-def run_dir(out, l, mode, v):
-    return os.path.join(out, f"l{l}_{mode}_v{v:g}")
+def run_dir(out, sysm, mode, v):
+    return os.path.join(out, f"{tag(sysm)}_{mode}_v{v:g}")
 
 
-def ratio_sets(l):
-    return [] if l == 3 else ["--set", f"particles.species[0].ratio={l}"]
+def system_sets(sysm):
+    """--set arguments of a system: the original diameter and the ratio where they differ from the case's."""
+    sp = case_config(CASE)["particles"]["species"][0]
+    d, l = sysm
+    out = []
+    if abs(d * 1e-6 - sp["d_original"]) > 1e-12:
+        out += ["--set", f"particles.species[0].d_original={d * 1e-6:.9g}"]
+    if l != sp.get("ratio", 1.0):
+        out += ["--set", f"particles.species[0].ratio={l:g}"]
+    return out
 
 
 def command(cgdem, args, out):
@@ -140,16 +158,16 @@ def run_batch(jobs, todo):
             print(f"  {out}: {time.time() - t0:.0f} s wall", flush=True)
 
 
-def run_all(cgdem, out, ratios, speeds, modes, jobs):
+def run_all(cgdem, out, systems, speeds, modes, jobs):
     os.makedirs(out, exist_ok=True)
-    for l in ratios:
+    for l in systems:
         s = settle_dir(out, l)
         f = full_dir(out, l)
-        still = ["--set", "time.end=0.0", "--set", "air.enabled=false", *ratio_sets(l)]
+        still = ["--set", "time.end=0.0", "--set", "air.enabled=false", *system_sets(l)]
         run_batch(jobs, [(command(cgdem, still, s), s), (command(cgdem, [*still, *full_sets(CASE)], f), f)])
         settled = os.path.join(s, "settled.bin")
         runs = [(command(cgdem, ["--restart", settled, "--set", f"walls.die_filling.shoe_speed={v:g}",
-                                 "--set", f"time.end={t_end(CASE, v):.6g}", *ratio_sets(l), *MODES[m]],
+                                 "--set", f"time.end={t_end(CASE, v):.6g}", *system_sets(l), *MODES[m]],
                          run_dir(out, l, m, v)), run_dir(out, l, m, v))
                 for v in speeds for m in modes]
         run_batch(jobs, runs)
@@ -238,30 +256,31 @@ def fit(rows):
                 v_min_fitted=min(p[0] for p in pts))
 
 
-def analyse(out, ratios, speeds):
+def analyse(out, systems, speeds):
     rows, fits = [], []
-    for l in ratios:
-        s = settle_dir(out, l)
+    for sysm in systems:
+        d_um, l = sysm
+        s = settle_dir(out, sysm)
         if not os.path.exists(os.path.join(s, "settled.bin")):
             continue
         rho_b, phi, bed = bulk_density(s)
-        fd = os.path.join(full_dir(out, l), "diagnostics.csv")
+        fd = os.path.join(full_dir(out, sysm), "diagnostics.csv")
         m_full = float(pd.read_csv(fd, comment="#")["mass_in_die_kg"].iloc[-1]) if os.path.exists(fd) else math.nan
         for m in MODES:
             mrows = []
             for v in speeds:
-                d = run_dir(out, l, m, v)
+                d = run_dir(out, sysm, m, v)
                 if not os.path.exists(os.path.join(d, "metrics.csv")):
                     continue
                 g = geometry(resolved(d))
                 V = g["mouth_len"] * g["width"] * g["depth"]
                 st = final_state(d)
-                r = dict(l=l, mode=m, v_m_s=v, rho_b_kg_m3=rho_b, phi_shoe=phi, bed_height_m=bed, V_die_m3=V,
+                r = dict(d_O_um=d_um, l=l, mode=m, v_m_s=v, rho_b_kg_m3=rho_b, phi_shoe=phi, bed_height_m=bed, V_die_m3=V,
                          M_full_kg=m_full, **st, delta=st["M_die_kg"] / m_full, delta_b=st["M_die_kg"] / (rho_b * V))
                 mrows.append(r)
             rows += mrows
             if mrows:
-                fits.append(dict(l=l, mode=m, **fit(mrows)))
+                fits.append(dict(d_O_um=d_um, l=l, mode=m, **fit(mrows)))
     if not rows:
         sys.exit(f"no finished runs in {out}")
     df, ff = pd.DataFrame(rows), pd.DataFrame(fits)
@@ -269,7 +288,7 @@ def analyse(out, ratios, speeds):
     ff.to_csv(os.path.join(out, "fill_ratio_fit.csv"), index=False, float_format="%.6g")
     write_markdown(out, df, ff)
     pd.set_option("display.width", 200)
-    print(df[["l", "mode", "v_m_s", "M_die_kg", "M_full_kg", "M_shoe_kg", "delta", "delta_b", "p_floor_max_Pa",
+    print(df[["d_O_um", "l", "mode", "v_m_s", "M_die_kg", "M_full_kg", "M_shoe_kg", "delta", "delta_b", "p_floor_max_Pa",
               "wall_s"]].to_string(index=False))
     print(ff.to_string(index=False))
     plot(out, df, ff)
@@ -278,53 +297,67 @@ def analyse(out, ratios, speeds):
 
 def write_markdown(out, df, ff):
     with open(os.path.join(out, "fill_ratio_table.md"), "w") as f:
-        f.write("| l | v m/s | delta vacuum | delta air | air / vacuum | delta_b vacuum / air | die-floor p max, air Pa "
-                "| powder left in the shoe, vacuum / air mg |\n")
-        f.write("|---|---|---|---|---|---|---|---|\n")
-        for (l, v), g in df.groupby(["l", "v_m_s"], sort=True):
+        f.write("| d_O um | l | v m/s | delta vacuum | delta air | air / vacuum | delta_b vacuum / air "
+                "| die-floor p max, air Pa | powder left in the shoe, vacuum / air mg |\n")
+        f.write("|---|---|---|---|---|---|---|---|---|\n")
+        for (d, l, v), g in df.groupby(["d_O_um", "l", "v_m_s"], sort=True):
             vac = g[g["mode"] == "vacuum"]
             air = g[g["mode"] == "air"]
-            dv = float(vac["delta"].iloc[0]) if len(vac) else math.nan
-            da = float(air["delta"].iloc[0]) if len(air) else math.nan
-            pa = float(air["p_floor_max_Pa"].iloc[0]) if len(air) else math.nan
-            sv = float(vac["M_shoe_kg"].iloc[0]) * 1e6 if len(vac) else math.nan
-            sa = float(air["M_shoe_kg"].iloc[0]) * 1e6 if len(air) else math.nan
-            bv = float(vac["delta_b"].iloc[0]) if len(vac) else math.nan
-            ba = float(air["delta_b"].iloc[0]) if len(air) else math.nan
-            f.write(f"| {l} | {v:g} | {dv:.3f} | {da:.3f} | {da / dv if dv > 0 else math.nan:.3f} | {bv:.3f} / {ba:.3f} "
-                    f"| {pa:.1f} | {sv:.1f} / {sa:.1f} |\n")
-        f.write("\n| l | mode | points fitted | n | v_c m/s |\n|---|---|---|---|---|\n")
+            get = lambda x, k, s=1.0: float(x[k].iloc[0]) * s if len(x) else math.nan
+            dv, da = get(vac, "delta"), get(air, "delta")
+            f.write(f"| {d:g} | {l:g} | {v:g} | {dv:.3f} | {da:.3f} | {da / dv if dv > 0 else math.nan:.3f} "
+                    f"| {get(vac, 'delta_b'):.3f} / {get(air, 'delta_b'):.3f} | {get(air, 'p_floor_max_Pa'):.1f} "
+                    f"| {get(vac, 'M_shoe_kg', 1e6):.1f} / {get(air, 'M_shoe_kg', 1e6):.1f} |\n")
+        f.write("\n| d_O um | l | mode | points fitted | n | v_c m/s |\n|---|---|---|---|---|---|\n")
         for _, r in ff.iterrows():
+            head = f"| {r['d_O_um']:g} | {r['l']:g} | {r['mode']} | {int(r['points'])} |"
             if r.get("points", 0) >= 2:
-                f.write(f"| {r['l']} | {r['mode']} | {int(r['points'])} | {r['n']:.2f} +- {r['n_err']:.2f} | "
-                        f"{r['v_c_m_s']:.3f} +- {r['v_c_err_m_s']:.3f} |\n")
+                f.write(f"{head} {r['n']:.2f} +- {r['n_err']:.2f} | {r['v_c_m_s']:.3f} +- {r['v_c_err_m_s']:.3f} |\n")
             else:
-                f.write(f"| {r['l']} | {r['mode']} | {int(r['points'])} | - | - |\n")
+                f.write(f"{head} - | - |\n")
 
 
 def plot(out, df, ff):
+    """Left: the paper's 125 um powder at every ratio l (the coarse-graining check); right: the
+    air's effect against the original particle size (one ratio per size)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6, 4.2))
-    style = {"vacuum": ("o", "tab:blue"), "air": ("s", "tab:red")}
-    for (l, m), g in df.groupby(["l", "mode"]):
-        mk, c = style[m]
-        ax.plot(g["v_m_s"], g["delta"], mk + ("-" if l == 3 else ":"), color=c, mfc="none" if l != 3 else c,
-                label=f"{m}, l = {l}")
-        fr = ff[(ff["l"] == l) & (ff["mode"] == m)]
+    sizes = sorted(df["d_O_um"].unique())
+    two = len(sizes) > 1
+    fig, axes = plt.subplots(1, 2 if two else 1, figsize=(11 if two else 6, 4.2), squeeze=False)
+    mode_style = {"vacuum": ("o", "tab:blue"), "air": ("s", "tab:red")}
+    size_colour = dict(zip(sizes, ["tab:green", "tab:red", "tab:purple", "tab:brown", "tab:orange"]))
+
+    def curve(ax, g, fr, mk, c, ls, label, filled):
+        ax.plot(g["v_m_s"], g["delta"], mk + ls, color=c, mfc=c if filled else "none", label=label)
         if len(fr) and fr["points"].iloc[0] >= 2:
             n, vc = fr["n"].iloc[0], fr["v_c_m_s"].iloc[0]
             vv = np.geomspace(vc, max(g["v_m_s"]), 50)
-            ax.plot(vv, (vc / vv) ** n, "--", color=c, lw=0.8,
-                    label=f"fit: v_c = {vc:.3f} m/s, n = {n:.2f}")
-    ax.axhline(1.0, color="0.6", lw=0.6)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("shoe speed v [m/s]")
-    ax.set_ylabel("fill ratio delta = M_die / M_full [1]")
-    ax.set_title("Fill ratio against shoe speed (slab, 7 mm die)")
-    ax.legend(fontsize=7)
+            ax.plot(vv, (vc / vv) ** n, "--", color=c, lw=0.8, label=f"  fit: v_c = {vc:.3f} m/s, n = {n:.2f}")
+
+    ax = axes[0][0]
+    ref = df[df["d_O_um"] == D_REF]
+    lmax = ref["l"].max() if len(ref) else 3
+    for (l, m), g in ref.groupby(["l", "mode"]):
+        mk, c = mode_style[m]
+        fr = ff[(ff["d_O_um"] == D_REF) & (ff["l"] == l) & (ff["mode"] == m)]
+        curve(ax, g, fr, mk, c, "-" if l == lmax else ":", f"{m}, l = {l:g}", l == lmax)
+    ax.set_title(f"d_O = {D_REF:g} um: ratio l (2.4 mm slab, 7 mm die)")
+    if two:
+        ax = axes[0][1]
+        for (d, l, m), g in df[df["l"] == df.groupby("d_O_um")["l"].transform("max")].groupby(["d_O_um", "l", "mode"]):
+            fr = ff[(ff["d_O_um"] == d) & (ff["l"] == l) & (ff["mode"] == m)]
+            curve(ax, g, fr, "s" if m == "air" else "o", size_colour[d], "-" if m == "air" else ":",
+                  f"{m}, d_O = {d:g} um (l = {l:g})", m == "air")
+        ax.set_title("the air's effect against particle size")
+    for ax in axes[0]:
+        ax.axhline(1.0, color="0.6", lw=0.6)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("shoe speed v [m/s]")
+        ax.set_ylabel("fill ratio delta = M_die / M_full [1]")
+        ax.legend(fontsize=6.5)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "fill_ratio.png"), dpi=130)
 
@@ -334,7 +367,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--cgdem", default=os.path.join("build", "cgdem"))
     ap.add_argument("--out", default=os.path.join("out", "fill_ratio"))
-    ap.add_argument("--ratios", default="3")
+    ap.add_argument("--ratios", default="3", help="ratios l of the case's powder (d_O = 125 um)")
+    ap.add_argument("--systems", help="original diameter (um) and ratio pairs, e.g. 125:3,125:2,250:1.5,375:1 "
+                    "(replaces --ratios)")
     ap.add_argument("--speeds", default=",".join(f"{v:g}" for v in SPEEDS))
     ap.add_argument("--modes", default="vacuum,air")
     ap.add_argument("--jobs", type=int, default=1, help="runs side by side (one thread each)")
@@ -344,11 +379,12 @@ def main():
     ap.add_argument("--analyse-only", action="store_true")
     a = ap.parse_args()
     CASE, MACHINE_JOBS = a.case, a.machine_jobs
-    ratios = [int(x) for x in a.ratios.split(",")]
+    systems = ([tuple(float(y) for y in x.split(":")) for x in a.systems.split(",")] if a.systems
+               else [(D_REF, float(x)) for x in a.ratios.split(",")])
     speeds = [float(x) for x in a.speeds.split(",")]
     if not a.analyse_only:
-        run_all(a.cgdem, a.out, ratios, speeds, a.modes.split(","), a.jobs)
-    analyse(a.out, ratios, speeds)
+        run_all(a.cgdem, a.out, systems, speeds, a.modes.split(","), a.jobs)
+    analyse(a.out, systems, speeds)
 
 
 if __name__ == "__main__":
