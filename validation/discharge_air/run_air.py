@@ -9,8 +9,9 @@ The bin, the powder and the slots are those of ../beverloo_discharge/ (bin_l<l>.
                 settled bed), top and outlet open to the room (gauge pressure 0)
   sealed        the same with air and the top sealed (air.boundary.z_max = "wall"): the
                 volume of powder that leaves must be replaced by air entering through the slot
-Systems: l = 3 (the paper's coarse-grained parcels, 375 um standing for 125 um), l = 2, and
-the simply-large particles (l = 1, d_O = 375 um: the parcels' size without the scaling).
+Systems: l = 3 (the paper's coarse-grained parcels, 375 um standing for 125 um), l = 2, the
+original particles (l1: 125 um, in bin_l1_air.toml beside this script, a 1 mm slab), and the
+simply-large particles (l = 1, d_O = 375 um: the parcels' size without the scaling).
 
 The rate W is the slope of the discharged mass over the window, as in the Beverloo sweep
 (run_sweep.rate_of). From the air snapshots (every 2 ms) the gauge pressure (the still air's
@@ -46,7 +47,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "beverloo_discharge"))
 import run_sweep as sweep  # noqa: E402
 
 G_ACC = 9.81
-# system -> (case ratio, extra --set arguments)
+# system -> (case ratio or case file, extra --set arguments)
 def parcels_of_375um(d_o_um, dt=None):
     """The l = 3 bin's parcels (375 um) standing for particles of d_O: ratio 375 / d_O. The
     collision time is the original particles' (it goes as d_O^(3/2)): below 125 um the DEM
@@ -57,6 +58,10 @@ def parcels_of_375um(d_o_um, dt=None):
 
 
 SYSTEMS = {
+    # The original particles (125 um, l = 1) in a 1 mm slab with the bin's air: bin_l1_air.toml
+    # beside this script (the sweep's 0.5 mm slab is one air cell thick). Its rate per unit
+    # slot length compares with the other systems'.
+    "l1": (os.path.join(HERE, "bin_l1_air.toml"), []),
     "l3": (3, []),
     "l2": (2, []),
     "large": parcels_of_375um(375),
@@ -90,7 +95,7 @@ def run_all(cgdem, out, systems, slots, modes):
     os.makedirs(out, exist_ok=True)
     for system in systems:
         l, extra = SYSTEMS[system]
-        case = sweep.case_of(l)
+        case = l if isinstance(l, str) else sweep.case_of(l)
         f = fill_dir(out, system)
         sweep.run(cgdem, [case, "--set", "time.end=0.0", "--set", "air.enabled=false", *sweep.slot_sets(0.0), *extra],
                   f, f + ".log")
@@ -226,7 +231,7 @@ def plot(out, df, prof):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(1, 3, figsize=(18, 4.4))
-    marks = {"l3": "o", "l2": "s", "large": "^"}
+    marks = {"l3": "o", "l2": "s", "large": "^", "l1": "D"}
     for mode, c in [("open", "C0"), ("sealed", "C3")]:
         s = df[df["mode"] == mode]
         if "crewdson_ratio" in s:
@@ -254,6 +259,14 @@ def plot(out, df, prof):
             ax[2].errorbar(g["d_O_um"], g["W_per_L_kg_s_m"] / (g["rho_b_kg_m3"] * math.sqrt(G_ACC) * g["b_m"] ** 1.5),
                            yerr=g["W_per_L_err_kg_s_m"] / (g["rho_b_kg_m3"] * math.sqrt(G_ACC) * g["b_m"] ** 1.5),
                            fmt="o-", color=c, label=mode if mode == "vacuum" else f"air, top {mode}")
+    # The finer parcels of the same 125 um powder (l = 2: 250 um, l = 1: the particles
+    # themselves), open markers: where they sit against the 375 um parcels' point.
+    fine = df[np.isclose(df["b_m"], 2.25e-3) & (df["d_m"] < 0.37e-3)]
+    for (system, mode), g in fine.groupby(["system", "mode"]):
+        c = {"vacuum": "k", "open": "C0", "sealed": "C3"}[mode]
+        y = g["W_per_L_kg_s_m"] / (g["rho_b_kg_m3"] * math.sqrt(G_ACC) * g["b_m"] ** 1.5)
+        ax[2].plot(g["d_O_m"] * 1e6, y, {"l1": "D", "l2": "s"}.get(system, "v"), mfc="none", color=c, ms=8,
+                   label=f"{system} (parcels of {g['d_m'].iloc[0] * 1e6:.0f} um), {mode}")
     ax[2].set(xscale="log", xlabel="particle diameter d_O [um] (parcels of 375 um, l = 375 um / d_O)",
               ylabel="W / (L rho_b g^0.5 b^1.5)", title="dimensionless rate against particle size, b = 2.25 mm")
     ax[2].set_ylim(bottom=0)
@@ -266,7 +279,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--cgdem", default="build/cgdem")
     p.add_argument("--out", default="out/discharge_air")
-    p.add_argument("--systems", default="l3,l2,large")
+    p.add_argument("--systems", default="l3,l2,large", help="l1 (the original particles), l3, l2, large, d050, "
+                   "d075, d188, d250")
     p.add_argument("--slots", default="2.25,3.0,3.75", help="slot widths b [mm] at l = 3; 2.25 for the others")
     p.add_argument("--modes", default="vacuum,open,sealed")
     p.add_argument("--arch", type=float, default=0.5,
