@@ -214,6 +214,8 @@ void ParticleRun::step() {
   if (last_.coupled) {
     count_fluid_step(counters_, *last_.coupled, s_->dem().time(), comm_.root());
     count_drag_step(drag_counters_, *last_.coupled);
+    auto ts = timers_.scope(t_series_);
+    out_->air_step(s_->dem().time(), *last_.coupled);
   }
 }
 
@@ -305,7 +307,7 @@ void ParticleRun::print_report(const run::Totals& t, long inside, const std::str
   fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
              "checkpoint.bin, config.resolved.toml\n",
              c_.output.dir, spec_.enabled ? ", diagnostics.csv, shoe_surface.csv, impacts.csv" : "",
-             air_.enabled ? ", air.xdmf (+ air_*.h5)" : "");
+             air_.enabled ? ", air_steps.csv, air.xdmf (+ air_*.h5)" : "");
 }
 
 }  // namespace

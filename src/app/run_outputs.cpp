@@ -73,12 +73,21 @@ RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const Diagnost
     energy_ = open_csv("energy.csv", energy_csv_columns());
     if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
     if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
+    if (s_.with_air()) air_csv_ = open_csv("air_steps.csv", air_steps_columns());
     // A restart after the tracer was taken continues with the one its snapshots carry.
     if (ctx_.restart) read_tracer(*snapshots_, dir, s_.dem().steps(), tracer_id_, tracer_z_);
   });
 }
 
-RunOutputs::~RunOutputs() = default;
+// A run stopped by an error (a drag solve that did not converge, a failed health check)
+// still leaves the rows of its last steps: they show how it came to stop.
+RunOutputs::~RunOutputs() {
+  if (!air_csv_ || air_rows_.empty()) return;
+  try {
+    air_csv_->rows(air_rows_);
+  } catch (...) {  // the run is already stopping with its own error
+  }
+}
 
 const Particles& RunOutputs::parcels(run::RunComm::Fields fields) {
   using F = run::RunComm::Fields;
@@ -105,7 +114,19 @@ void RunOutputs::energy() {
     account_parcels(t, inside);
     energy_->row(energy_csv_row(dem.time(), t.energy, t.present, t.removed, inside));
     energy_->flush();
+    write_air_steps();
   });
+}
+
+void RunOutputs::air_step(double t, const CoupledStepStats& st) {
+  if (air_csv_) air_rows_ += air_steps_row(t, st) + "\n";
+}
+
+void RunOutputs::write_air_steps() {
+  if (!air_csv_) return;
+  air_csv_->rows(air_rows_);
+  air_rows_.clear();
+  air_csv_->flush();
 }
 
 // Parcels are never lost silently: the count (present + removed) must stay what it was,
@@ -221,13 +242,15 @@ io::ScalarFields RunOutputs::tracer(const io::ParticleTable& t) {
 }
 
 void RunOutputs::checkpoint(const std::string& path) {
+  if (s_.with_air()) s_.comm().together("air_steps.csv", true, [&] { write_air_steps(); });
   run::write_checkpoint(path, ctx_.resolved_config, s_,
                         [&](io::ArchiveWriter& w) { save_observers(w, diag_, counters_); });
 }
 
 void RunOutputs::finish(const run::Totals& totals) {
   s_.comm().together("final outputs", true, [&] {
-    energy_.reset(), diag_csv_.reset(), surface_csv_.reset();
+    write_air_steps();
+    energy_.reset(), diag_csv_.reset(), surface_csv_.reset(), air_csv_.reset();
     if (spec_.enabled) write_impacts(c_.output.dir, diag_, comment_);
     io::write_metrics(in_folder(c_.output.dir, "metrics.csv"),
                       run_metrics(c_.output.dir, s_.dem().time(), totals.present, totals.energy, totals.removed,

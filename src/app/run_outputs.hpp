@@ -1,8 +1,8 @@
 // The files a run with parcels writes while it runs (README, "Running cases"): energy.csv,
-// diagnostics.csv, shoe_surface.csv, the particle and air snapshots, last_good.h5 and the
-// checkpoints. Each is written by the same code on one process and over N MPI ranks: the
-// ranks give their totals and their parcels (run::RunComm, the identity on one process)
-// and rank 0 writes, so that the files read alike however many ranks ran.
+// diagnostics.csv, shoe_surface.csv, air_steps.csv, the particle and air snapshots,
+// last_good.h5 and the checkpoints. Each is written by the same code on one process and over
+// N MPI ranks: the ranks give their totals and their parcels (run::RunComm, the identity on
+// one process) and rank 0 writes, so that the files read alike however many ranks ran.
 #pragma once
 #include <memory>
 #include <optional>
@@ -50,6 +50,13 @@ class RunOutputs {
   void surface();   // shoe_surface.csv: the bed's profile
   void snapshot();  // particles (and air) snapshot, and last_good.h5
   void checkpoint(const std::string& path);
+  // air_steps.csv (with air): the row of the fluid step that ended at t. Not collective: rank
+  // 0 keeps the rows and writes them when energy.csv is flushed, before a checkpoint (a
+  // restart from it finds every row up to its time) and at the end, so that a fluid step
+  // costs no file access and no exchange between ranks. The stats are global: the pressure
+  // solve's norms and the divergence maxima are reduced over the ranks, and the implicit
+  // drag coupling runs on one process.
+  void air_step(double t, const CoupledStepStats& st);
   // The end: closes the series, writes impacts.csv and metrics.csv (rank 0).
   void finish(const run::Totals& totals);
 
@@ -65,6 +72,7 @@ class RunOutputs {
   // The parcels of every rank on rank 0 (one process: its own), gathered once per step.
   const Particles& parcels(run::RunComm::Fields fields);
   DiagnosticsRow diagnostics_now();
+  void write_air_steps();  // the kept rows of air_steps.csv, on rank 0 inside together()
   void account_parcels(const run::Totals& t, long inside);
   io::ScalarFields tracer(const io::ParticleTable& t);
 
@@ -78,7 +86,8 @@ class RunOutputs {
   io::Attributes attrs_;
   std::unique_ptr<io::SnapshotSeries> snapshots_;
   std::unique_ptr<io::GridSnapshotSeries> air_snapshots_;
-  std::unique_ptr<io::CsvSeries> energy_, diag_csv_, surface_csv_;
+  std::unique_ptr<io::CsvSeries> energy_, diag_csv_, surface_csv_, air_csv_;
+  std::string air_rows_;  // of air_steps.csv, not yet written (rank 0)
   const Particles* gathered_ = nullptr;
   long gathered_step_ = -1;
   run::RunComm::Fields gathered_fields_ = run::RunComm::Fields::Kinematics;

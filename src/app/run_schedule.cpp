@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "core/error.hpp"
 #include "core/revision.hpp"
@@ -187,6 +188,39 @@ void print_drag_counters(const DragCounters& c) {
   fmt::print("implicit drag: {} nonlinear solves, {:.2f} iterations and {:.2f} air steps per fluid step (at most {}), "
              "largest accepted residual {:.2e} m/s\n",
              c.steps, double(c.iterations) / c.steps, double(c.evaluations) / c.steps, c.max_iterations, c.max_residual);
+}
+
+const io::CsvColumns& air_steps_columns() {
+  static const io::CsvColumns columns = {
+      {"t_s", "s", "time at the end of the fluid step"},
+      {"dt_fluid_s", "s", "length of the fluid step (its DEM substeps times the DEM step)"},
+      {"pressure_iterations", "1",
+       "Krylov iterations of the step's pressure solves (both Heun stages; implicit coupling: summed over every "
+       "air step of the nonlinear solve), as the final report's mean counts them"},
+      {"pressure_converged", "1", "1 when the pressure solves of the (accepted) air step converged, 0 when not"},
+      {"pressure_residual", "1", "relative residual |r|/|b| of the last pressure solve of the (accepted) air step"},
+      {"max_divergence_1_s", "1/s",
+       "max |d(eps)/dt + div(eps u)| after the step over the cells with air (alpha_cell < 1)"},
+      {"max_divergence_walls_1_s", "1/s",
+       "the same over the cells entirely inside walls (not imposed there)"},
+      {"drag_iterations", "1", "KINSOL's nonlinear iterations of the implicit drag coupling (0: no nonlinear solve)"},
+      {"drag_evaluations", "1",
+       "air steps of the implicit drag coupling's nonlinear solve, difference quotients included (0: none)"},
+      {"drag_residual_m_s", "m/s", "max |G(u) - u| at the accepted iterate (nan: no nonlinear solve)"},
+      {"drag_first_residual_m_s", "m/s", "max |G(u) - u| at the first evaluation, u = u^n (nan: no nonlinear solve)"}};
+  return columns;
+}
+
+std::string air_steps_row(double t, const CoupledStepStats& st) {
+  const fluid::StepStats& f = st.fluid;
+  const ImplicitDragStats& d = st.drag;
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  const bool solved = d.evaluations > 0;
+  // t and dt in full (shortest exact form): the times are the sums of the steps.
+  return fmt::format("{},{},{},{},{:.10g},{:.10g},{:.10g},{},{},{:.10g},{:.10g}", t, st.dt_fluid,
+                     f.pressure_iterations, f.pressure_converged ? 1 : 0, f.pressure_residual, f.max_divergence,
+                     f.max_divergence_walls, d.iterations, d.evaluations, solved ? d.residual : none,
+                     solved ? d.first_residual : none);
 }
 
 void print_fluid_counters(const RunCounters& c) {

@@ -133,4 +133,11 @@ struct DragCounters {
 void count_drag_step(DragCounters& c, const CoupledStepStats& st);
 void print_drag_counters(const DragCounters& c);
 
+// air_steps.csv: what the two counters above sum up, one row per fluid step (the step that
+// ended at t), so that a run shows when its pressure or implicit-drag solves struggled. The
+// drag columns are there for either coupling, so that the files read alike: without a
+// nonlinear solve (semi-implicit) iterations and evaluations are 0 and the residuals nan.
+const io::CsvColumns& air_steps_columns();
+std::string air_steps_row(double t, const CoupledStepStats& st);
+
 }  // namespace cgdem::app

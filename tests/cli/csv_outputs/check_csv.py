@@ -25,7 +25,10 @@ import pandas as pd
 
 # The dimensionless columns (unit 1, no suffix), as documented in src/io/csv_series.hpp and
 # README.md: counts and indices.
-DIMENSIONLESS = {"particles", "removed", "inside_walls", "impacts", "bubbles", "bin", "parcels", "id"}
+DIMENSIONLESS = {"particles", "removed", "inside_walls", "impacts", "bubbles", "bin", "parcels", "id",
+                 # air_steps.csv: the solvers' counts, a flag and a relative residual
+                 "pressure_iterations", "pressure_converged", "pressure_residual", "drag_iterations",
+                 "drag_evaluations"}
 # metrics.csv: the SI suffixes its metric names end with (io/metrics.hpp).
 METRIC_SUFFIXES = ("_s", "_kg", "_m", "_Pa", "_J", "_kg_s", "_m_s", "_m3", "_m3_s", "_Hz", "_1_s", "_J_m3")
 
