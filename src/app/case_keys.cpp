@@ -115,6 +115,12 @@ p0 = [3e-3, 2e-3, 16e-3]
 p1 = [3e-3, 2e-3, 17e-3]
 radius0 = 0.0
 radius1 = 1e-3
+[[walls.body.part]]
+type = "ring"
+p0 = [8e-3, 2e-3, 1e-3]
+p1 = [8e-3, 2e-3, 1.5e-3]
+radius_inner = 0.5e-3
+radius_outer = 2e-3
 
 [diagnostics]
 interval = 1e-3

@@ -42,6 +42,15 @@ ShapePtr read_cone(const Section& s) {
   return make_cone(p0, p1, r0, r1);
 }
 
+ShapePtr read_ring(const Section& s) {
+  Vec3 p0 = s.vec3("p0"), p1 = s.vec3("p1");
+  double ri = s.number("radius_inner", Range::open_closed(0, kMaxRadius));
+  double ro = s.number("radius_outer", Range::open_closed(0, kMaxRadius));
+  if (!(ro > ri)) s.fail("radius_outer", fmt::format("must exceed radius_inner ({:g})", ri));
+  if (!(norm(p1 - p0) > 0)) s.fail("p1", "must differ from p0");
+  return make_ring(p0, p1, ri, ro);
+}
+
 const PrimitiveRow kPrimitives[] = {
     {"box", "axis-aligned solid box; keys min, max", &read_box, "min = [0, 0, 0]\nmax = [1, 2, 3]"},
     {"halfspace", "the solid behind a plane; keys point, normal (pointing out of the solid)", &read_half_space,
@@ -51,6 +60,9 @@ const PrimitiveRow kPrimitives[] = {
     {"sphere", "solid sphere; keys centre, radius", &read_sphere, "centre = [0, 0, 0]\nradius = 1.0"},
     {"cone", "solid capped cone (frustum, e.g. a hopper); keys p0, p1 (axis ends), radius0, radius1 (one may be 0)",
      &read_cone, "p0 = [0, 0, 0]\np1 = [0, 0, 2]\nradius0 = 1.0\nradius1 = 0.25"},
+    {"ring", "solid ring between two radii (a tube wall, or a plate with a round hole); keys p0, p1 (axis ends), "
+     "radius_inner, radius_outer",
+     &read_ring, "p0 = [0, 0, 0]\np1 = [0, 0, 0.5]\nradius_inner = 1.0\nradius_outer = 3.0"},
 };
 
 }  // namespace

@@ -53,6 +53,9 @@ ShapePtr make_sphere(const Vec3& centre, double radius);
 // Solid capped cone (frustum) with axis from p0 (radius r0) to p1 (radius r1); one radius
 // may be 0 (cone.cpp).
 ShapePtr make_cone(const Vec3& p0, const Vec3& p1, double r0, double r1);
+// Solid ring (thick-walled tube; with a large outer radius, a plate with a round hole)
+// between radii r_in > 0 and r_out about the axis from p0 to p1 (ring.cpp).
+ShapePtr make_ring(const Vec3& p0, const Vec3& p1, double r_in, double r_out);
 ShapePtr make_union(ShapePtr a, ShapePtr b);
 ShapePtr make_intersection(ShapePtr a, ShapePtr b);
 ShapePtr make_difference(ShapePtr a, ShapePtr b);  // a minus b
