@@ -103,24 +103,33 @@ def resolved(run_dir):
         return tomllib.load(f)
 
 
-def bulk_density(fill):
+def bulk_density(fill, bin_x=(0.0, BIN_W), bin_y=None):
     """rho_b of the settled bed: solid volume of the parcels whose centres lie in a box
-    1 mm from the side walls and 1.5 mm from the floor and from the bed's surface."""
+    1 mm from the side walls and 1.5 mm from the floor and from the bed's surface. The walls
+    are at x = bin_x; along y the slab's period, or, for a 3D bin, 1 mm from y = bin_y."""
     snap = sorted(glob.glob(os.path.join(fill, "particles_*.h5")))[-1]
     with h5py.File(snap) as h:
         x = h["particles/x"][:]
         dd = h["particles/d"][:]
     cfg = resolved(fill)
     rho_p = cfg["particles"]["species"][0]["density"]
-    L = cfg["domain"]["max"][1] - cfg["domain"]["min"][1]
+    if bin_y is None:
+        L = cfg["domain"]["max"][1] - cfg["domain"]["min"][1]
+        in_y = np.ones(len(x), bool)
+    else:
+        L = bin_y[1] - bin_y[0] - 2e-3
+        in_y = (x[:, 1] > bin_y[0] + 1e-3) & (x[:, 1] < bin_y[1] - 1e-3)
     top = np.percentile(x[:, 2], 99)
     lo, hi = FLOOR_TOP + 1.5e-3, top - 1.5e-3
-    inside = (x[:, 0] > 1e-3) & (x[:, 0] < BIN_W - 1e-3) & (x[:, 2] > lo) & (x[:, 2] < hi)
-    phi = np.sum(np.pi / 6 * dd[inside] ** 3) / ((BIN_W - 2e-3) * L * (hi - lo))
+    inside = (x[:, 0] > bin_x[0] + 1e-3) & (x[:, 0] < bin_x[1] - 1e-3) & in_y & (x[:, 2] > lo) & (x[:, 2] < hi)
+    phi = np.sum(np.pi / 6 * dd[inside] ** 3) / ((bin_x[1] - bin_x[0] - 2e-3) * L * (hi - lo))
     return phi * rho_p, phi, top
 
 
-def rate_of(run_dir):
+def rate_of(run_dir, window=None):
+    """The discharge rate of a run over `window` (s, s; default the module's WINDOW, read at
+    the call, so a check that sets run_sweep.WINDOW gets its own)."""
+    window = window or WINDOW
     cfg = resolved(run_dir)
     sp = cfg["particles"]["species"][0]
     d = sp["ratio"] * sp["d_original"]
@@ -128,26 +137,28 @@ def rate_of(run_dir):
     L = cfg["domain"]["max"][1] - cfg["domain"]["min"][1]
     e = pd.read_csv(os.path.join(run_dir, "energy.csv"), comment="#")
     t, M = e["t_s"].to_numpy(), e["removed"].to_numpy() * m_p
-    w = (t >= WINDOW[0] - 1e-9) & (t <= WINDOW[1] + 1e-9)
+    w = (t >= window[0] - 1e-9) & (t <= window[1] + 1e-9)
     W = np.polyfit(t[w], M[w], 1)[0]
-    edges = np.linspace(WINDOW[0], WINDOW[1], 5)
+    edges = np.linspace(window[0], window[1], 5)
     quarters = [np.polyfit(t[(t >= a - 1e-9) & (t <= b + 1e-9)], M[(t >= a - 1e-9) & (t <= b + 1e-9)], 1)[0]
                 for a, b in zip(edges[:-1], edges[1:])]
-    mid = 0.5 * (WINDOW[0] + WINDOW[1])
+    mid = 0.5 * (window[0] + window[1])
     first = np.polyfit(t[w & (t <= mid + 1e-9)], M[w & (t <= mid + 1e-9)], 1)[0]
     last = np.polyfit(t[w & (t >= mid - 1e-9)], M[w & (t >= mid - 1e-9)], 1)[0]
     n0 = e["particles"].iloc[0] + e["removed"].iloc[0]
     return dict(d_m=d, L_m=L, m_parcel_kg=m_p, W_kg_s=W, W_err_kg_s=np.std(quarters, ddof=1) / 2,
                 W_per_L_kg_s_m=W / L, W_per_L_err_kg_s_m=np.std(quarters, ddof=1) / 2 / L,
                 drift=(last - first) / W if W > 0 else float("nan"),
-                parcels_in_window=int(round(W * (WINDOW[1] - WINDOW[0]) / m_p)),
+                parcels_in_window=int(round(W * (window[1] - window[0]) / m_p)),
                 discharged_fraction_at_end=float(e["removed"].iloc[-1] / n0), t=t, M=M)
 
 
-def fit(rows):
-    """Least squares of (W/L)^(2/3) = a + s b; returns C', k and their standard errors."""
-    b = np.array([r["b_m"] for r in rows])
-    y = np.array([r["W_per_L_kg_s_m"] for r in rows]) ** (2 / 3)
+def fit(rows, width="b_m", rate="W_per_L_kg_s_m", power=1.5):
+    """Least squares of rate^(1/power) = a + s width (the slot: (W/L)^(2/3) = a + s b; the
+    round orifice: W^(2/5) = a + s D with power 2.5); returns C (C'), k and their standard
+    errors."""
+    b = np.array([r[width] for r in rows])
+    y = np.array([r[rate] for r in rows]) ** (1 / power)
     X = np.column_stack([np.ones_like(b), b])
     coef, res, *_ = np.linalg.lstsq(X, y, rcond=None)
     a, s = coef
@@ -156,11 +167,11 @@ def fit(rows):
     cov = s2 * np.linalg.inv(X.T @ X)
     d, rho_b = rows[0]["d_m"], rows[0]["rho_b_kg_m3"]
     k = -a / (s * d)
-    C = s ** 1.5 / (rho_b * math.sqrt(G))
+    C = s ** power / (rho_b * math.sqrt(G))
     gk = np.array([-1 / (s * d), a / (s ** 2 * d)])
-    gC = np.array([0.0, 1.5 * math.sqrt(s) / (rho_b * math.sqrt(G))])
+    gC = np.array([0.0, power * s ** (power - 1) / (rho_b * math.sqrt(G))])
     return dict(C=C, C_err=math.sqrt(gC @ cov @ gC), k=k, k_err=math.sqrt(gk @ cov @ gk), a=a, s=s,
-                rms_rel=float(np.sqrt(np.mean(((X @ coef) ** 1.5 / y ** 1.5 - 1) ** 2))), n=len(b))
+                rms_rel=float(np.sqrt(np.mean(((X @ coef) ** power / y ** power - 1) ** 2))), n=len(b))
 
 
 def analyse(out, ratios):
@@ -189,14 +200,16 @@ def analyse(out, ratios):
         sys.exit(f"no finished runs in {out}")
     # The same fit on the b/d range every fitted ratio covers (the form is not exact over
     # b/d = 3..15: C' and k grow with the range's b/d).
+    # Each pair of neighbouring ratios (3 and 2, 2 and 1) on the b/d range both cover.
     common = {}
-    if len(fits) > 1:
-        lo = max(min(r["b_over_d"] for r in table if r["l"] == l) for l in fits) - 1e-9
-        hi = min(max(r["b_over_d"] for r in table if r["l"] == l) for l in fits) + 1e-9
-        for l in fits:
+    fitted = sorted(fits, reverse=True)
+    for coarse, fine in zip(fitted, fitted[1:]):
+        lo = max(min(r["b_over_d"] for r in table if r["l"] == l) for l in (coarse, fine)) - 1e-9
+        hi = min(max(r["b_over_d"] for r in table if r["l"] == l) for l in (coarse, fine)) + 1e-9
+        for l in (coarse, fine):
             rows = [r for r in table if r["l"] == l and r["fill"] == "full" and lo <= r["b_over_d"] <= hi]
             if len(rows) >= 3:
-                common[l] = dict(fit(rows), b_over_d_min=lo, b_over_d_max=hi)
+                common[(l, coarse + fine - l)] = dict(fit(rows), b_over_d_min=lo, b_over_d_max=hi)
     df["beverloo_fit_W_per_L_kg_s_m"] = [
         fits[r.l]["s"] ** 1.5 * max(r.b_m + fits[r.l]["a"] / fits[r.l]["s"], 0) ** 1.5 if r.l in fits else np.nan
         for r in df.itertuples()]
@@ -206,7 +219,7 @@ def analyse(out, ratios):
         if ref_l else np.nan for r in df.itertuples()]
     df.to_csv(os.path.join(out, "beverloo_table.csv"), index=False, float_format="%.6g")
     pd.DataFrame([dict(l=l, slots="all", **v) for l, v in fits.items()] +
-                 [dict(l=l, slots="common b/d", **v) for l, v in common.items()]).to_csv(os.path.join(out, "beverloo_fit.csv"),
+                 [dict(l=l, slots=f"b/d shared with l = {other}", **v) for (l, other), v in common.items()]).to_csv(os.path.join(out, "beverloo_fit.csv"),
                                                                     index=False, float_format="%.6g")
     pd.set_option("display.width", 200)
     print(df[["l", "fill", "b_m", "b_over_d", "W_per_L_kg_s_m", "W_per_L_err_kg_s_m", "drift",
@@ -215,8 +228,8 @@ def analyse(out, ratios):
     for l, v in fits.items():
         print(f"l = {l}: C' = {v['C']:.3f} +- {v['C_err']:.3f}, k = {v['k']:.3f} +- {v['k_err']:.3f} "
               f"({v['n']} slots, rms relative misfit of W {v['rms_rel']:.3f})")
-    for l, v in common.items():
-        print(f"l = {l}, b/d in [{v['b_over_d_min']:.1f}, {v['b_over_d_max']:.1f}]: C' = {v['C']:.3f} +- {v['C_err']:.3f}, "
+    for (l, other), v in common.items():
+        print(f"l = {l} (range shared with l = {other}), b/d in [{v['b_over_d_min']:.1f}, {v['b_over_d_max']:.1f}]: C' = {v['C']:.3f} +- {v['C_err']:.3f}, "
               f"k = {v['k']:.3f} +- {v['k_err']:.3f} ({v['n']} slots, rms relative misfit of W {v['rms_rel']:.3f})")
     if ref_l:
         for r in df[df.l != ref_l].itertuples():
