@@ -74,6 +74,13 @@ SYSTEMS = {
     "d075": parcels_of_375um(75, 5e-7),
     "d188": parcels_of_375um(187.5),
     "d250": parcels_of_375um(250),
+    # The original particles of 250 um (l = 1) in the l = 2 bin (250 um, a 1 mm slab, two air
+    # cells across): the l = 1 point of the size curve at 250 um, against "d250" (the 375 um
+    # parcels, l = 1.5) and "large" (the 375 um particles unscaled, its simply large particles).
+    "o250": (2, ["--set", "particles.species[0].d_original=250e-6", "--set", "particles.species[0].ratio=1"]),
+    # The original particles of 187.5 um (l = 1, 27,800 in the same 1 mm slab), against "d188"
+    # (the 375 um parcels, l = 2).
+    "o188": (2, ["--set", "particles.species[0].d_original=187.5e-6", "--set", "particles.species[0].ratio=1"]),
 }
 MODES = {
     "vacuum": ["--set", "air.enabled=false"],
@@ -260,12 +267,13 @@ def plot(out, df, prof):
                            yerr=g["W_per_L_err_kg_s_m"] / (g["rho_b_kg_m3"] * math.sqrt(G_ACC) * g["b_m"] ** 1.5),
                            fmt="o-", color=c, label=mode if mode == "vacuum" else f"air, top {mode}")
     # The finer parcels of the same 125 um powder (l = 2: 250 um, l = 1: the particles
-    # themselves), open markers: where they sit against the 375 um parcels' point.
+    # themselves) and the original 250 and 187.5 um particles (o250, o188), open markers: where they sit
+    # against the 375 um parcels' points.
     fine = df[np.isclose(df["b_m"], 2.25e-3) & (df["d_m"] < 0.37e-3)]
     for (system, mode), g in fine.groupby(["system", "mode"]):
         c = {"vacuum": "k", "open": "C0", "sealed": "C3"}[mode]
         y = g["W_per_L_kg_s_m"] / (g["rho_b_kg_m3"] * math.sqrt(G_ACC) * g["b_m"] ** 1.5)
-        ax[2].plot(g["d_O_m"] * 1e6, y, {"l1": "D", "l2": "s"}.get(system, "v"), mfc="none", color=c, ms=8,
+        ax[2].plot(g["d_O_m"] * 1e6, y, {"l1": "D", "l2": "s", "o250": "D", "o188": "D"}.get(system, "v"), mfc="none", color=c, ms=8,
                    label=f"{system} (parcels of {g['d_m'].iloc[0] * 1e6:.0f} um), {mode}")
     ax[2].set(xscale="log", xlabel="particle diameter d_O [um] (parcels of 375 um, l = 375 um / d_O)",
               ylabel="W / (L rho_b g^0.5 b^1.5)", title="dimensionless rate against particle size, b = 2.25 mm")
@@ -280,7 +288,7 @@ def main():
     p.add_argument("--cgdem", default="build/cgdem")
     p.add_argument("--out", default="out/discharge_air")
     p.add_argument("--systems", default="l3,l2,large", help="l1 (the original particles), l3, l2, large, d050, "
-                   "d075, d188, d250")
+                   "d075, d188, d250, o250, o188")
     p.add_argument("--slots", default="2.25,3.0,3.75", help="slot widths b [mm] at l = 3; 2.25 for the others")
     p.add_argument("--modes", default="vacuum,open,sealed")
     p.add_argument("--arch", type=float, default=0.5,
