@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Beverloo discharge beyond the 12 mm slab: wide slots and a round orifice.
 
-wide   bin_wide_l3.toml, bin_wide_l2.toml: the slab bin 24 mm wide with an 18 mm bed, slots
-       up to 6 mm (16 parcel diameters at l = 3). Measures from which b / d_parcel l = 3
-       agrees with l = 2 within 5 %, and (b = 3.75 mm at l = 3, also run in the 12 mm bin)
-       that the bin's width does not change the rate.
+wide   bin_wide_l3.toml, bin_wide_l2.toml, bin_wide_l1.toml: the slab bin 24 mm wide with an
+       18 mm bed, slots up to 6 mm (16 parcel diameters at l = 3, 24 at l = 2, 48 original
+       diameters). Measures how far l = 3 and l = 2 are from l = 2 and l = 1 at the widest
+       slots (the 5 % question), and (b = 3.75 mm at l = 3, also run in the 12 mm bin) how
+       much the bin's width changes the rate. l = 1 (127,000 particles) runs b = 6 mm only.
 round  bin_orifice_l3.toml: a square 10 x 10 mm bin in 3D with a round hole of diameter D in
        its floor (a "ring" wall part), l = 3. Fits Beverloo's round-orifice law
            W = C rho_b sqrt(g) (D - k d)^(5/2)
@@ -16,7 +17,7 @@ the slope of the discharged mass over the steady window, its error from the wind
 quarters (run_sweep.rate_of).
 
 Usage (from the repository root):
-    /usr/bin/python3 validation/beverloo_discharge/run_wide_round.py wide  [--ratios 3,2] [--out out/beverloo]
+    /usr/bin/python3 validation/beverloo_discharge/run_wide_round.py wide  [--ratios 3,2,1] [--out out/beverloo]
     /usr/bin/python3 validation/beverloo_discharge/run_wide_round.py round [--out out/beverloo]
     /usr/bin/python3 validation/beverloo_discharge/run_wide_round.py round16   # the 16 mm bin, D = 3 mm
     /usr/bin/python3 validation/beverloo_discharge/run_wide_round.py analyse [--out out/beverloo]
@@ -35,7 +36,7 @@ import run_sweep as rs  # noqa: E402
 
 HERE = rs.HERE
 WIDE_X_C, WIDE_W = 12e-3, 24e-3                  # m: the wide bin's slot centre and inner width
-WIDE_SLOTS_MM = {3: [3.75, 4.5, 6.0], 2: [4.5, 6.0]}
+WIDE_SLOTS_MM = {3: [3.75, 4.5, 6.0], 2: [4.5, 6.0], 1: [6.0]}
 ROUND_D_MM = [1.875, 2.25, 2.625, 3.0]            # D = 5, 6, 7, 8 parcel diameters at l = 3
 ROUND_BIN = (0.0, 10e-3)                          # m: the round bin's walls, along x and y
 ROUND_WINDOW = (0.03, 0.10)                       # s
@@ -130,13 +131,15 @@ def analyse_wide(out):
             if len(m):
                 print(f"bin width, l = {r.l}, b = {r.b_m * 1e3:.3f} mm: 12 mm bin {m.iloc[0].W_per_L_kg_s_m:.4g}, "
                       f"24 mm bin {r.W_per_L_kg_s_m:.4g} kg/s/m ({r.W_per_L_kg_s_m / m.iloc[0].W_per_L_kg_s_m - 1:+.3f})")
-    for r in df[df.l == 3].itertuples():
-        f = df[(df.l == 2) & np.isclose(df.b_m, r.b_m)]
-        if len(f):
-            rel = r.W_per_L_kg_s_m / f.iloc[0].W_per_L_kg_s_m - 1
-            err = math.hypot(r.W_per_L_err_kg_s_m / r.W_per_L_kg_s_m, f.iloc[0].W_per_L_err_kg_s_m / f.iloc[0].W_per_L_kg_s_m)
-            print(f"wide bin, l = 3 vs l = 2, b = {r.b_m * 1e3:.3f} mm (b/d = {r.b_over_d:.1f} at l = 3, "
-                  f"{f.iloc[0].b_over_d:.1f} at l = 2): {rel:+.3f} +- {err:.3f}")
+    for coarse, fine in ((3, 2), (2, 1), (3, 1)):
+        for r in df[df.l == coarse].itertuples():
+            f = df[(df.l == fine) & np.isclose(df.b_m, r.b_m)]
+            if len(f):
+                rel = r.W_per_L_kg_s_m / f.iloc[0].W_per_L_kg_s_m - 1
+                err = math.hypot(r.W_per_L_err_kg_s_m / r.W_per_L_kg_s_m,
+                                 f.iloc[0].W_per_L_err_kg_s_m / f.iloc[0].W_per_L_kg_s_m)
+                print(f"wide bin, l = {coarse} vs l = {fine}, b = {r.b_m * 1e3:.3f} mm (b/d = {r.b_over_d:.1f} at "
+                      f"l = {coarse}, {f.iloc[0].b_over_d:.1f} at l = {fine}): {rel:+.3f} +- {err:.3f}")
     return df
 
 
