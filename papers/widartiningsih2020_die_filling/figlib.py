@@ -181,14 +181,19 @@ class Run:
 
     # -- geometry
     def shoe_shift(self, t):
-        """Displacement of the shoe along x at time t [m] (constant acceleration over the ramp)."""
+        """Displacement of the shoe along x at time t [m] from its place at t = 0, where
+        cavity_x0 puts it (cgdem's Motion integrates from t = 0; constant acceleration over
+        the ramp)."""
         v, t0, ramp = self.die["shoe_speed"], self.die["shoe_start"], self.die["shoe_ramp"]
-        s = t - t0
-        if s <= 0:
-            return 0.0
-        if s < ramp:
-            return 0.5 * v * s * s / ramp
-        return v * (s - 0.5 * ramp)
+
+        def from_rest(t):
+            s = t - t0
+            if s <= 0:
+                return 0.0
+            if s < ramp:
+                return 0.5 * v * s * s / ramp
+            return v * (s - 0.5 * ramp)
+        return from_rest(t) - from_rest(0.0)
 
     def y_mid(self):
         return self.die["mouth_y0"] + 0.5 * self.die["mouth_width"]

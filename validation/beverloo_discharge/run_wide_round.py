@@ -143,6 +143,17 @@ def analyse_wide(out):
     return df
 
 
+def round_row(run_dir, bin_width, D_mm, rho_b, phi, top):
+    """The table row of one round-orifice discharge: its rate over ROUND_WINDOW (the slot's
+    per-length figures left out) beside its bin's settled bed."""
+    r = rs.rate_of(run_dir, window=ROUND_WINDOW)
+    for k in ("t", "M", "L_m", "W_per_L_kg_s_m", "W_per_L_err_kg_s_m"):
+        r.pop(k)
+    return dict(l=3, bin_width_m=bin_width, bed_height_m=top + r["d_m"] / 2 - rs.FLOOR_TOP, rho_b_kg_m3=rho_b, phi=phi,
+                D_m=D_mm * 1e-3, D_over_d=D_mm * 1e-3 / r["d_m"], window_t0_s=ROUND_WINDOW[0],
+                window_t1_s=ROUND_WINDOW[1], **r)
+
+
 def analyse_round(out):
     f = os.path.join(out, "round_fill_l3")
     if not os.path.isdir(f):
@@ -151,15 +162,8 @@ def analyse_round(out):
     rows = []
     for D_mm in ROUND_D_MM:
         d = os.path.join(out, f"round_l3_D{D_mm:.3f}mm")
-        if not os.path.exists(os.path.join(d, "metrics.csv")):
-            continue
-        r = rs.rate_of(d, window=ROUND_WINDOW)
-        r.pop("t"), r.pop("M")
-        for k in ("L_m", "W_per_L_kg_s_m", "W_per_L_err_kg_s_m"):
-            r.pop(k)
-        rows.append(dict(l=3, bin_width_m=ROUND_BIN[1] - ROUND_BIN[0], bed_height_m=top + r["d_m"] / 2 - rs.FLOOR_TOP,
-                         rho_b_kg_m3=rho_b, phi=phi, D_m=D_mm * 1e-3, D_over_d=D_mm * 1e-3 / r["d_m"],
-                         window_t0_s=ROUND_WINDOW[0], window_t1_s=ROUND_WINDOW[1], **r))
+        if os.path.exists(os.path.join(d, "metrics.csv")):
+            rows.append(round_row(d, ROUND_BIN[1] - ROUND_BIN[0], D_mm, rho_b, phi, top))
     if len(rows) < 3:
         return pd.DataFrame(rows), None
     v = rs.fit(rows, width="D_m", rate="W_kg_s", power=2.5)
@@ -167,13 +171,8 @@ def analyse_round(out):
     if os.path.exists(os.path.join(big, "metrics.csv")):
         rho16, phi16, top16 = rs.bulk_density(os.path.join(out, "round16_fill_l3"), bin_x=(0.0, BIG_ROUND_BIN),
                                               bin_y=(0.0, BIG_ROUND_BIN))
-        r = rs.rate_of(big, window=ROUND_WINDOW)
-        r.pop("t"), r.pop("M")
-        for k in ("L_m", "W_per_L_kg_s_m", "W_per_L_err_kg_s_m"):
-            r.pop(k)
-        rows.append(dict(l=3, bin_width_m=BIG_ROUND_BIN, bed_height_m=top16 + r["d_m"] / 2 - rs.FLOOR_TOP,
-                         rho_b_kg_m3=rho16, phi=phi16, D_m=BIG_ROUND_D_MM * 1e-3, D_over_d=BIG_ROUND_D_MM * 1e-3 / r["d_m"],
-                         window_t0_s=ROUND_WINDOW[0], window_t1_s=ROUND_WINDOW[1], **r))
+        r = round_row(big, BIG_ROUND_BIN, BIG_ROUND_D_MM, rho16, phi16, top16)
+        rows.append(r)
         small = [x for x in rows if x["bin_width_m"] < BIG_ROUND_BIN and math.isclose(x["D_m"], BIG_ROUND_D_MM * 1e-3)]
         if small:
             print(f"bin size, round orifice D = {BIG_ROUND_D_MM} mm: 10 mm bin W = {small[0]['W_kg_s']:.4g}, 16 mm bin "

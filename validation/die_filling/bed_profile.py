@@ -12,33 +12,25 @@ and the die's mean gauge pressure (cells A, B, C of diagnostics.csv) at that tim
 the bed's weight where it is thinnest can be set against the pressure under it.
 
 The shoe's position comes from the run's config.resolved.toml (walls.die_filling:
-cavity_x0 at t = 0, shoe_start, shoe_ramp with a linear ramp of the speed, shoe_speed).
+cavity_x0 at t = 0, shoe_start, shoe_ramp with a linear ramp of the speed, shoe_speed),
+through origin.py's shoe_travel.
 
 Usage:
     /usr/bin/python3 validation/die_filling/bed_profile.py RUN [RUN ...] [--times 0,0.05,0.1] [--bins 10]
 """
 import argparse
-import glob
 import os
+import sys
 import tomllib
 
 import h5py
 import numpy as np
 import pandas as pd
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from origin import shoe_travel, snapshot_at  # noqa: E402
+
 G = 9.81  # m/s^2
-
-
-def shoe_shift(t, df):
-    """The shoe's displacement [m] from its position at t = 0 (where cavity_x0 places it;
-    cgdem's Motion integrates from t = 0): at rest until shoe_start, its speed ramped
-    linearly to shoe_speed over shoe_ramp, then constant."""
-    ts, tr, v = df["shoe_start"], df["shoe_ramp"], df["shoe_speed"]
-
-    def travelled(t):
-        s = max(t - ts, 0.0)
-        return v * s * s / (2 * tr) if s < tr else v * (s - tr / 2)
-    return travelled(t) - travelled(0.0)
 
 
 def die_pressure(run, t):
@@ -58,18 +50,14 @@ def profile(run, times, nbins):
     # The cavity's width inside the domain (a slab is narrower than the cavity).
     width = min(width, ymax - ymin) if cfg["domain"].get("periodic", "") == "y" else width
     table = df["table_top"]
-    snaps = {}
-    for p in sorted(glob.glob(os.path.join(run, "particles_*.h5"))):
-        with h5py.File(p) as f:
-            snaps[float(f.attrs["time"])] = p
     rows = []
     for t in times:
-        ts = min(snaps, key=lambda s: abs(s - t))
+        ts, path = snapshot_at(run, t)
         if abs(ts - t) > 2e-3:
             continue
-        with h5py.File(snaps[ts]) as f:
+        with h5py.File(path) as f:
             x, v, d = f["particles/x"][:], f["particles/v"][:], f["particles/d"][:]
-        x0 = df["cavity_x0"] + shoe_shift(ts, df)
+        x0 = df["cavity_x0"] + shoe_travel(df, ts)
         vol = np.pi / 6 * d ** 3
         up = x[:, 2] > table
         p_die = die_pressure(run, ts)

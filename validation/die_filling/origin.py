@@ -97,14 +97,19 @@ def analyse(run, t):
 
 
 def shoe_travel(die, t):
-    """The shoe's displacement at t: at rest until shoe_start, its speed ramped linearly to
-    shoe_speed over shoe_ramp (the motion of src/geometry/die_filling.hpp)."""
+    """The shoe's displacement at t from where cavity_x0 places it, at t = 0 (cgdem's Motion
+    integrates from t = 0): at rest until shoe_start, its speed ramped linearly to
+    shoe_speed over shoe_ramp (the motion of src/geometry/die_filling.hpp). A shoe that
+    starts before t = 0 has a negative displacement then."""
     v, t0, ramp = die.get("shoe_speed", 0.0), die.get("shoe_start", 0.0), die.get("shoe_ramp", 1e-3)
-    if t <= t0:
-        return 0.0
-    if t <= t0 + ramp:
-        return 0.5 * v * (t - t0) ** 2 / ramp
-    return v * (t - t0 - 0.5 * ramp)
+
+    def from_rest(t):
+        if t <= t0:
+            return 0.0
+        if t <= t0 + ramp:
+            return 0.5 * v * (t - t0) ** 2 / ramp
+        return v * (t - t0 - 0.5 * ramp)
+    return from_rest(t) - from_rest(0.0)
 
 
 def main():

@@ -25,7 +25,6 @@ import argparse
 import math
 import os
 import shutil
-import subprocess
 import sys
 import tomllib
 
@@ -33,6 +32,8 @@ import numpy as np
 import pandas as pd
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "beverloo_discharge"))
+import run_sweep as sweep  # noqa: E402
 CASE = os.path.join(HERE, "lone.toml")
 G = 9.81
 RHO_P, D_O = 1500.0, 125e-6          # Table 1
@@ -69,16 +70,13 @@ def ode_speed(falls_m, dt=1e-7):
 
 
 def run(cgdem, out, l, feedback, seed, dx=0.6e-3):
+    """One run of lone.toml (kept when it has finished before), by run_sweep.run: one thread,
+    its log beside its folder, a failure stops the script."""
     tag = f"l{l}_{'two' if feedback else 'one'}way_s{seed}" + ("" if dx == 0.6e-3 else f"_dx{dx * 1e3:.1f}mm")
     d = os.path.join(out, tag)
-    if not os.path.exists(os.path.join(d, "metrics.csv")):
-        cmd = [cgdem, "run", CASE, "--threads", "1", "--output", d, "--set", f"particles.species[0].ratio={l}",
-               "--set", f"air.feedback={'true' if feedback else 'false'}", "--set", f"particles.seed={seed}",
-               "--set", f"air.dx={dx:.6g}"]
-        with open(d + ".log", "w") as f:
-            rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT)
-        if rc != 0:
-            sys.exit(f"run failed ({rc}): {' '.join(cmd)}; see {d}.log")
+    sweep.run(cgdem, [CASE, "--set", f"particles.species[0].ratio={l}",
+                      "--set", f"air.feedback={'true' if feedback else 'false'}", "--set", f"particles.seed={seed}",
+                      "--set", f"air.dx={dx:.6g}"], d, d + ".log")
     return tag, d
 
 
