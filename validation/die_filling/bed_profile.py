@@ -8,7 +8,8 @@ bin 0 at the trailing wall, bin N-1 at the leading wall) it prints
         its weight per unit area is rho_p g h_s (14.7 Pa per mm for Table 1's powder)
   top   the bed's surface above the table [mm]: 95th percentile of the parcel centres' z
   v_z   the bin's mean vertical parcel velocity [mm/s] (> 0: the bed rises)
-and the die's mean gauge pressure (cells A, B, C of diagnostics.csv) at that time, so that
+and the die's mean gauge pressure (its pressure cells in diagnostics.csv: A, B, C in the
+cases, the floor cell in validation/fill_ratio; none in vacuum) at that time, so that
 the bed's weight where it is thinnest can be set against the pressure under it.
 
 The shoe's position comes from the run's config.resolved.toml (walls.die_filling:
@@ -34,9 +35,12 @@ G = 9.81  # m/s^2
 
 
 def die_pressure(run, t):
+    """Mean gauge pressure of the run's pressure cells at the row nearest t, and their names."""
     d = pd.read_csv(os.path.join(run, "diagnostics.csv"), comment="#")
     i = (d.t_s - t).abs().idxmin()
-    return float(d.loc[i, ["p_A_Pa", "p_B_Pa", "p_C_Pa"]].mean())
+    cells = [c for c in d.columns if c.startswith("p_") and c.endswith("_Pa")]
+    names = ", ".join(c[2:-3] for c in cells)
+    return (float(d.loc[i, cells].mean()) if cells else float("nan")), names
 
 
 def profile(run, times, nbins):
@@ -60,7 +64,7 @@ def profile(run, times, nbins):
         x0 = df["cavity_x0"] + shoe_travel(df, ts)
         vol = np.pi / 6 * d ** 3
         up = x[:, 2] > table
-        p_die = die_pressure(run, ts)
+        p_die, cells = die_pressure(run, ts)
         for b in range(nbins):
             lo = x0 + b * length / nbins
             m = up & (x[:, 0] >= lo) & (x[:, 0] < lo + length / nbins)
@@ -69,7 +73,8 @@ def profile(run, times, nbins):
                              x_mm=(lo + length / nbins / 2) * 1e3, h_s_mm=hs * 1e3,
                              weight_Pa=rho * G * hs,
                              top_mm=(np.percentile(x[m, 2], 95) - table) * 1e3 if m.sum() > 5 else np.nan,
-                             v_z_mm_s=float(np.mean(v[m, 2])) * 1e3 if m.any() else np.nan, p_die_Pa=p_die))
+                             v_z_mm_s=float(np.mean(v[m, 2])) * 1e3 if m.any() else np.nan, p_die_Pa=p_die,
+                             cells=cells))
     return pd.DataFrame(rows)
 
 
@@ -83,7 +88,9 @@ def main():
     times = [float(s) for s in a.times.split(",")]
     out = pd.concat([profile(r, times, a.bins) for r in a.runs], ignore_index=True)
     for (run, t), g in out.groupby(["run", "t_s"], sort=False):
-        print(f"{run}  t = {t:.3f} s  die pressure (mean of A, B, C) {g.p_die_Pa.iloc[0]:.1f} Pa; "
+        cells = g.cells.iloc[0]
+        p = f"die pressure (mean of {cells}) {g.p_die_Pa.iloc[0]:.1f} Pa" if cells else "no pressure cells"
+        print(f"{run}  t = {t:.3f} s  {p}; "
               f"thinnest bin {g.h_s_mm.min():.2f} mm of solid = {g.weight_Pa.min():.1f} Pa of weight")
         for col, fmt in (("h_s_mm", "{:5.2f}"), ("top_mm", "{:5.2f}"), ("v_z_mm_s", "{:5.0f}")):
             print(f"  {col:9s} trailing " + " ".join(fmt.format(v) for v in g[col]) + " leading")
