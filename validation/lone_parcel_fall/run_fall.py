@@ -34,6 +34,8 @@ import pandas as pd
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "beverloo_discharge"))
 import run_sweep as sweep  # noqa: E402
+sys.path.insert(0, HERE)
+import self_induced  # noqa: E402
 CASE = os.path.join(HERE, "lone.toml")
 G = 9.81
 RHO_P, D_O = 1500.0, 125e-6          # Table 1
@@ -154,6 +156,22 @@ def check(cgdem, work):
         ok &= not bad
         print(f"{what}: fall {r.fall_m * 1e3:4.1f} mm, v = {r.v_m_s:.4f} m/s, single particle "
               f"{r.v_single_particle_m_s:.4f} m/s, error {r.rel_excess:+.4f} (tolerance {tol}){'  FAIL' if bad else ''}")
+    # The self-induced velocity follows one law at every l (README.md, "How much air the
+    # parcel drags along"): C = S rho_f dx^2 V / F in a band, and the same for every l.
+    si = self_induced.measure(work, seeds=(1,))
+    lo, hi, spread = q["self_induced_C_min"], q["self_induced_C_max"], q["self_induced_C_spread_max"]
+    for h in (7e-3, 15e-3):
+        rows = si[(si.fall_m - h).abs() < 1e-9]
+        for r in rows.itertuples():
+            bad = not lo <= r.C <= hi
+            ok &= not bad
+            print(f"self-induced velocity, l = {r.l}: fall {h * 1e3:4.1f} mm, S = {r.S_m_s * 1e3:.1f} mm/s "
+                  f"({r.S_over_V:.3f} of V), C = {r.C:.3f} (band {lo}-{hi}){'  FAIL' if bad else ''}")
+        ratio = rows.C.max() / rows.C.min()
+        bad = len(rows) != len(RATIOS) or ratio > spread
+        ok &= not bad
+        print(f"self-induced velocity after {h * 1e3:.0f} mm: largest C / smallest C over l = {ratio:.3f} "
+              f"(tolerance {spread}){'  FAIL' if bad else ''}")
     if not ok:
         sys.exit("lone parcel fall check failed")
     print("lone parcel fall check passed")

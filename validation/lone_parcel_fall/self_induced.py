@@ -43,17 +43,14 @@ def series(d):
     return fall, v, force
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("out", nargs="?", default="out/lone_parcel_fall")
-    ap.add_argument("--csv", help="also write the table here")
-    a = ap.parse_args()
+def measure(out, ratios=(1, 2, 3), seeds=(1, 2, 3)):
+    """One row per two-way run of run_fall.py in OUT and fall height (see the module text)."""
     rows = []
-    for l in (1, 2, 3):
+    for l in ratios:
         for dx, suffix in ((0.6e-3, ""), (1.2e-3, "_dx1.2mm")):
-            for seed in (1, 2, 3):
-                one = os.path.join(a.out, f"l{l}_oneway_s{seed}")
-                two = os.path.join(a.out, f"l{l}_twoway_s{seed}{suffix}")
+            for seed in seeds:
+                one = os.path.join(out, f"l{l}_oneway_s{seed}")
+                two = os.path.join(out, f"l{l}_twoway_s{seed}{suffix}")
                 if not (os.path.isdir(one) and os.path.isdir(two)):
                     continue
                 f1, v1, F1 = series(one)
@@ -69,9 +66,17 @@ def main():
                     rows.append(dict(l=l, dx_m=dx, seed=seed, fall_m=h * 1e-3, V_m_s=V, F_N=F, W_m_s=W, S_m_s=S,
                                      S_over_V=S / V, C=S * RHO_F * dx * dx * V / F,
                                      Gc_stokes=0.564 * l ** 3 * D_O / dx))
-    if not rows:
+    return pd.DataFrame(rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out", nargs="?", default="out/lone_parcel_fall")
+    ap.add_argument("--csv", help="also write the table here")
+    a = ap.parse_args()
+    df = measure(a.out)
+    if df.empty:
         sys.exit(f"{a.out}: no runs of run_fall.py there (run it with --grids first)")
-    df = pd.DataFrame(rows)
     mean = df.groupby(["l", "dx_m", "fall_m"], as_index=False).agg(
         V=("V_m_s", "mean"), S=("S_m_s", "mean"), S_over_V=("S_over_V", "mean"), C=("C", "mean"),
         C_range=("C", lambda c: c.max() - c.min()), Gc=("Gc_stokes", "first"))
