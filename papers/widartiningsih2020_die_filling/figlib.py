@@ -24,6 +24,9 @@ except ImportError as e:  # pragma: no cover
              "and run the scripts with /usr/bin/python3 (or set PYTHON for run.sh).")
 
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "validation", "die_filling"))
+from origin import shoe_travel  # noqa: E402
+
 __all__ = ["InputError", "PAPER", "PAPER_PRESSURE_EVENTS", "Run", "load_runs", "by_die_type", "read_csv",
            "read_metrics", "read_particles", "read_air", "draw_walls", "save", "arg_parser", "main_guard",
            "require", "plt"]
@@ -182,18 +185,9 @@ class Run:
     # -- geometry
     def shoe_shift(self, t):
         """Displacement of the shoe along x at time t [m] from its place at t = 0, where
-        cavity_x0 puts it (cgdem's Motion integrates from t = 0; constant acceleration over
-        the ramp)."""
-        v, t0, ramp = self.die["shoe_speed"], self.die["shoe_start"], self.die["shoe_ramp"]
-
-        def from_rest(t):
-            s = t - t0
-            if s <= 0:
-                return 0.0
-            if s < ramp:
-                return 0.5 * v * s * s / ramp
-            return v * (s - 0.5 * ramp)
-        return from_rest(t) - from_rest(0.0)
+        cavity_x0 puts it (validation/die_filling/origin.py's shoe_travel, the one copy of
+        cgdem's shoe motion in the scripts)."""
+        return shoe_travel(self.die, t)
 
     def y_mid(self):
         return self.die["mouth_y0"] + 0.5 * self.die["mouth_width"]

@@ -74,8 +74,8 @@ def column(run):
         w = (t >= OPEN_WINDOW[0]) & (t <= OPEN_WINDOW[1])
         ours["p_open"] = (fmt(float(mean[w].max()), "{:.1f}", " Pa") + " at " + fmt(float(t[w][np.argmax(mean[w])]),
                           "{:.3f}", " s")) if w.any() else "n/a"
+        late = t > OPEN_WINDOW[1]
         for c in "ABC":
-            late = t > OPEN_WINDOW[1]
             v = d[f"p_{c}_Pa"][late]
             ours["p_" + c] = (fmt(float(v.max()), "{:.1f}", " Pa") + " at " + fmt(float(t[late][np.argmax(v)]), "{:.3f}", " s")
                               if late.any() else "n/a")

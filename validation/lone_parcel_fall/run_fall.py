@@ -84,13 +84,9 @@ def run(cgdem, out, l, feedback, seed, dx=0.6e-3):
 
 def speeds(run_dir):
     """The parcel's downward speed after each fall of FALLS_MM (linear in the 0.2 ms rows)."""
-    e = pd.read_csv(os.path.join(run_dir, "energy.csv"), comment="#")
-    if int(e.particles.iloc[-1]) != 1:
-        sys.exit(f"{run_dir}: the parcel left the box")
-    vz = -e.pz_kg_m_s / e.mass_kg
-    fall = (e.E_pot_J.iloc[0] - e.E_pot_J) / (e.mass_kg * G)
-    if fall.iloc[-1] < FALLS_MM[-1] * 1e-3:
-        sys.exit(f"{run_dir}: fell only {fall.iloc[-1] * 1e3:.1f} mm")
+    fall, vz, _ = self_induced.series(run_dir)
+    if fall[-1] < FALLS_MM[-1] * 1e-3:
+        sys.exit(f"{run_dir}: fell only {fall[-1] * 1e3:.1f} mm")
     return [float(np.interp(h * 1e-3, fall, vz)) for h in FALLS_MM]
 
 

@@ -34,7 +34,11 @@ FALLS_MM = [3.5, 7.0, 10.0, 15.0]
 
 
 def series(d):
+    """The run's fall [m], downward speed [m/s] and the air's upward force on the parcel [N],
+    one value per energy.csv row; stops if the parcel left the box."""
     e = pd.read_csv(os.path.join(d, "energy.csv"), comment="#")
+    if int(e.particles.iloc[-1]) != 1:
+        sys.exit(f"{d}: the parcel left the box")
     m = float(e.mass_kg.iloc[0])
     t = e.t_s.to_numpy()
     v = (-e.pz_kg_m_s / m).to_numpy()
