@@ -16,6 +16,7 @@ import numpy as np
 import figlib as fl
 
 OPEN_WINDOW = (0.06, 0.11)  # s: from just after the die opens to just after the paper's broad maximum
+DIE_CLOSES = 0.25  # s: the shoe's body covers the whole mouth again (validation/die_filling/README.md)
 
 
 def find_log(run):
@@ -54,13 +55,18 @@ def column(run):
     tp = paper["peak_time"]
     t, mass = d["t_s"], d["mass_in_die_kg"]
     final = float(mass[-1])
+    # A run stopped before the die closes (the original systems, run in part: issue #20)
+    # has no final state: what needs one says where the run ends instead.
+    end = float(m.get("end_time_s", t[-1]))
+    cut = f"run ends at {end:.2f} s" if end < DIE_CLOSES - 1e-9 else None
+    upto = f" (run to {end:.2f} s)" if cut else ""
     full = t[np.argmax(mass >= 0.99 * final)] if final > 0 else np.nan
     at_tp = float(np.interp(tp, t, mass)) if t[0] <= tp <= t[-1] else np.nan
     ours = {
         "front": fmt(m.get("front_time_s"), "{:.4f}", " s"),
         "impact": fmt(m.get("mean_impact_velocity_m_s"), "{:.3f}", " m/s"),
         "rate": (fmt(m.get("transfer_rate_peak_kg_s", np.nan) * 1e3, "{:.1f}", " g/s") + " at "
-                 + fmt(m.get("transfer_rate_peak_time_s"), "{:.3f}", " s")),
+                 + fmt(m.get("transfer_rate_peak_time_s"), "{:.3f}", " s") + upto),
         "full": fmt(full, "{:.3f}", " s"),
         "at_tp": fmt(at_tp * 1e3, "{:.3f}", " g") + (f" ({at_tp / final:.0%} of the final)" if final > 0 else ""),
         "fill": fmt(final * 1e3, "{:.3f}", " g") + " at " + fmt(float(t[-1]), "{:.2f}", " s"),
@@ -78,13 +84,17 @@ def column(run):
         for c in "ABC":
             v = d[f"p_{c}_Pa"][late]
             ours["p_" + c] = (fmt(float(v.max()), "{:.1f}", " Pa") + " at " + fmt(float(t[late][np.argmax(v)]), "{:.3f}", " s")
-                              if late.any() else "n/a")
+                              + upto if late.any() else "n/a")
     else:
         ours["p_open"] = "no air"
         for c in "ABC":
             ours["p_" + c] = "no air"
     shoe = d.get("mass_in_shoe_kg")
     ours["shoe"] = fmt(float(shoe[-1]) * 1e3, "{:.3f}", " g") if shoe is not None else "n/a"
+    if cut:
+        for key in ("full", "fill", "shoe"):
+            ours[key] = cut
+        ours["at_tp"] = fmt(at_tp * 1e3, "{:.3f}", " g") if np.isfinite(at_tp) else cut
     log = find_log(run)
     facts = log_facts(log)
     start = facts["restart_t"] if facts["restart_t"] is not None else run.config["time"]["start"]
