@@ -60,6 +60,9 @@ def column(run_dir):
         v[f"mass in the die at {tt:.2f} s [g]"] = f"{1e3 * at(d, 'mass_in_die_kg', tt):.3f}"
     ok = t >= 0
     i = int(np.argmax(np.where(ok, d["transfer_rate_kg_s"], -1)))
+    total = m.get("solid_mass_kg", float("nan"))   # all the powder, so that a run stopped early reads "not yet"
+    j99 = np.nonzero(d["mass_in_die_kg"] >= 0.99 * total)[0]
+    v["die holds 99 % of all the powder [s]"] = f"{t[j99[0]]:.3f}" if j99.size else f"not by {t[-1]:.3f}"
     v["transfer-rate maximum [g/s] at [s]"] = f"{1e3 * d['transfer_rate_kg_s'][i]:.2f} at {t[i]:.3f}"
     cells = [c for c in ("p_A_Pa", "p_B_Pa", "p_C_Pa") if c in d]
     if cells and np.isfinite(d[cells[0]]).any():
@@ -68,6 +71,14 @@ def column(run_dir):
         j = int(np.argmax(np.where(w, p, -np.inf)))
         v["die pressure (mean of A, B, C) at 0.08 / 0.10 s [Pa]"] = f"{at(dict(t_s=t, p=p), 'p', 0.08):.1f} / {at(dict(t_s=t, p=p), 'p', 0.10):.1f}"
         v["its maximum over 0.05-0.11 s [Pa] at [s]"] = f"{p[j]:.1f} at {t[j]:.3f}"
+        # The release: the first time after 0.10 s that the die's mean pressure falls below
+        # half of its mean over 0.06-0.10 s (after the pre-opening artifact, before any
+        # break-through). Unlike the bubble census it needs no resolved bubble, so it reads
+        # alike on every grid.
+        plateau = float(np.mean(p[(t >= 0.06) & (t <= 0.10)]))
+        below = np.nonzero((t > 0.10) & (p < 0.5 * plateau))[0]
+        v["die pressure below half its 0.06-0.10 s mean [Pa], first after 0.10 s [s]"] = (
+            f"{plateau:.1f}, {t[below[0]]:.3f}" if below.size else f"{plateau:.1f}, never")
         late = t >= 0.11
         k = int(np.argmax(np.where(late, d["p_B_Pa"], -np.inf)))
         v["cell B peak after 0.11 s [Pa] at [s]"] = f"{d['p_B_Pa'][k]:.1f} at {t[k]:.3f}"
