@@ -20,4 +20,11 @@ if(CGDEM_SYSTEM_PYTHON3)
            COMMAND ${CGDEM_SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/tests/cli/origin_layers.py
                    ${PROJECT_BINARY_DIR}/cli_out/origin_layers)
   set_tests_properties(cli.origin_layers_counted PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "all checks passed")
+  # validation/die_filling/impact_definitions.py (the front's speed under several averages)
+  # on snapshots made by hand, both die types, whose averages are known.
+  add_test(NAME cli.impact_definitions_averaged
+           COMMAND ${CGDEM_SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/tests/cli/impact_definitions.py
+                   ${PROJECT_BINARY_DIR}/cli_out/impact_definitions)
+  set_tests_properties(cli.impact_definitions_averaged PROPERTIES LABELS cli
+                       PASS_REGULAR_EXPRESSION "all checks passed")
 endif()

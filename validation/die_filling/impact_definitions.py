@@ -64,39 +64,46 @@ def stats(v, mask):
     return n, float(np.linalg.norm(v[mask], axis=1).mean()), float(-v[mask, 2].mean())
 
 
+def averages(run, times=None):
+    """One dict per snapshot: the run, its die type, the snapshot time, the run's front time and
+    metric, and for each set of parcels (die, first, 0-2mm, 2-4mm) its count, mean speed and mean
+    downward speed. `times`: snapshot times to pick the nearest of (default: every snapshot
+    within 6 ms after the front)."""
+    die_type, (mx0, mx1, top), (fx0, fx1, floor) = geometry(run)
+    front = metric(run, "front_time_s")
+    ours = metric(run, "mean_impact_velocity_m_s")
+    snaps = sorted((read_time(p), p) for p in glob.glob(os.path.join(run, "particles_*.h5")))
+    if times:
+        picked = [min(snaps, key=lambda s: abs(s[0] - t)) for t in times]
+    else:
+        picked = [s for s in snaps if front - 1e-9 <= s[0] <= front + 6e-3]
+    rows = []
+    for t, path in picked:
+        with h5py.File(path, "r") as f:
+            x = f["particles/x"][:]
+            v = f["particles/v"][:]
+        die = (x[:, 0] > mx0) & (x[:, 0] < mx1) & (x[:, 2] < top)
+        sec = (x[:, 0] > fx0) & (x[:, 0] < fx1) & (x[:, 2] < top)
+        h = x[:, 2] - floor
+        row = {"run": os.path.basename(os.path.normpath(run)), "die_type": die_type,
+               "t_s": t, "front_s": front, "first_arrivals_m_s": ours}
+        for name, mask in (("die", die), ("first", sec), ("0-2mm", sec & (h < 2e-3)),
+                           ("2-4mm", sec & (h >= 2e-3) & (h < 4e-3))):
+            n, speed, down = stats(v, mask)
+            row[f"{name}_n"] = n
+            row[f"{name}_speed_m_s"] = speed
+            row[f"{name}_down_m_s"] = down
+        rows.append(row)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--times", help="snapshot times [s], comma-separated (default: the front + 0..6 ms)")
     a = ap.parse_args()
-    rows = []
-    for run in a.runs:
-        die_type, (mx0, mx1, top), (fx0, fx1, floor) = geometry(run)
-        front = metric(run, "front_time_s")
-        ours = metric(run, "mean_impact_velocity_m_s")
-        snaps = sorted((read_time(p), p) for p in glob.glob(os.path.join(run, "particles_*.h5")))
-        if a.times:
-            want = [float(t) for t in a.times.split(",")]
-            picked = [min(snaps, key=lambda s: abs(s[0] - t)) for t in want]
-        else:
-            picked = [s for s in snaps if front - 1e-9 <= s[0] <= front + 6e-3]
-        for t, path in picked:
-            with h5py.File(path, "r") as f:
-                x = f["particles/x"][:]
-                v = f["particles/v"][:]
-            die = (x[:, 0] > mx0) & (x[:, 0] < mx1) & (x[:, 2] < top)
-            sec = (x[:, 0] > fx0) & (x[:, 0] < fx1) & (x[:, 2] < top)
-            h = x[:, 2] - floor
-            row = {"run": os.path.basename(os.path.normpath(run)), "die_type": die_type,
-                   "t_s": t, "front_s": front, "first_arrivals_m_s": ours}
-            for name, mask in (("die", die), ("first", sec), ("0-2mm", sec & (h < 2e-3)),
-                               ("2-4mm", sec & (h >= 2e-3) & (h < 4e-3))):
-                n, speed, down = stats(v, mask)
-                row[f"{name}_n"] = n
-                row[f"{name}_speed_m_s"] = speed
-                row[f"{name}_down_m_s"] = down
-            rows.append(row)
-    table = pd.DataFrame(rows)
+    times = [float(t) for t in a.times.split(",")] if a.times else None
+    table = pd.DataFrame([r for run in a.runs for r in averages(run, times)])
     with pd.option_context("display.width", 250, "display.max_columns", 40,
                            "display.float_format", "{:.4g}".format):
         print(table.to_string(index=False))
