@@ -35,7 +35,10 @@ def read_time(path):
 
 
 def geometry(run):
-    with open(os.path.join(run, "config.resolved.toml"), "rb") as f:
+    path = os.path.join(run, "config.resolved.toml")
+    if not os.path.exists(path):
+        raise SystemExit(f"{run}: not a run folder of cgdem run (no config.resolved.toml)")
+    with open(path, "rb") as f:
         cfg = tomllib.load(f)
     df = cfg["walls"]["die_filling"]
     x0, length = df["mouth_x0"], df["mouth_length"]
@@ -73,6 +76,8 @@ def averages(run, times=None):
     front = metric(run, "front_time_s")
     ours = metric(run, "mean_impact_velocity_m_s")
     snaps = sorted((read_time(p), p) for p in glob.glob(os.path.join(run, "particles_*.h5")))
+    if not snaps:
+        raise SystemExit(f"{run}: no particle snapshots (particles_*.h5)")
     if times:
         picked = [min(snaps, key=lambda s: abs(s[0] - t)) for t in times]
     else:

@@ -5,8 +5,9 @@ Markdown table: one column per run. The geometry study of README.md is made of t
     validation/die_filling/study_table.py LABEL=RUN_DIR [LABEL=RUN_DIR ...]
 
 Reads each run's diagnostics.csv and metrics.csv (and shoe_surface.csv when present).
-Rows: front time and impact velocity, mass in the die at fixed times, the transfer rate's
-maximum, the die pressure (mean of cells A, B, C) before 0.10 s, cell B's peak, the
+Rows: front time and impact velocity, mass in the die at fixed times, when 99 % of the
+powder is in the die, the transfer rate's maximum, the die pressure (mean of cells A, B, C)
+before 0.10 s, the release (when it falls below half its 0.06-0.10 s mean), cell B's peak, the
 largest entrapped-air volume, where the die's air left (integrated path fluxes), the powder
 left in the shoe when the die closes and at the end. Needs numpy only.
 """
@@ -60,9 +61,10 @@ def column(run_dir):
         v[f"mass in the die at {tt:.2f} s [g]"] = f"{1e3 * at(d, 'mass_in_die_kg', tt):.3f}"
     ok = t >= 0
     i = int(np.argmax(np.where(ok, d["transfer_rate_kg_s"], -1)))
-    total = m.get("solid_mass_kg", float("nan"))   # all the powder, so that a run stopped early reads "not yet"
+    total = m.get("solid_mass_kg", float("nan"))   # all the powder, so that a run stopped early reads "not by"
     j99 = np.nonzero(d["mass_in_die_kg"] >= 0.99 * total)[0]
-    v["die holds 99 % of all the powder [s]"] = f"{t[j99[0]]:.3f}" if j99.size else f"not by {t[-1]:.3f}"
+    v["die holds 99 % of all the powder [s]"] = (
+        "—" if not np.isfinite(total) else f"{t[j99[0]]:.3f}" if j99.size else f"not by {t[-1]:.3f}")
     v["transfer-rate maximum [g/s] at [s]"] = f"{1e3 * d['transfer_rate_kg_s'][i]:.2f} at {t[i]:.3f}"
     cells = [c for c in ("p_A_Pa", "p_B_Pa", "p_C_Pa") if c in d]
     if cells and np.isfinite(d[cells[0]]).any():
