@@ -35,8 +35,9 @@ import tomllib
 import numpy as np
 import pandas as pd
 
+from checklist import check, finish
+
 cgdem, case, work = sys.argv[1:4]
-failures = []
 T, T_HALF, DRAG_TOL = 3e-3, 1.5e-3, 1e-7
 UNITS = {"t_s": "s", "dt_fluid_s": "s", "pressure_iterations": "1", "pressure_converged": "1",
          "pressure_residual": "1", "max_divergence_1_s": "1/s", "max_divergence_walls_1_s": "1/s",
@@ -44,12 +45,6 @@ UNITS = {"t_s": "s", "dt_fluid_s": "s", "pressure_iterations": "1", "pressure_co
          "drag_first_residual_m_s": "m/s"}
 COUPLING = {"semi-implicit": [], "implicit": ["--set", "air.coupling=implicit",
                                                "--set", f"air.implicit.tolerance={DRAG_TOL}"]}
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def run(out, *extra):
@@ -185,5 +180,4 @@ vacuum = os.path.join(work, "vacuum")
 out = run(vacuum, "--set", "air.enabled=false")
 check(not os.path.exists(os.path.join(vacuum, "air_steps.csv")) and "air_steps.csv" not in out,
       "a run in vacuum writes no air_steps.csv and does not list it")
-print("all checks passed" if not failures else f"{len(failures)} check(s) failed")
-sys.exit(1 if failures else 0)
+finish()

@@ -27,15 +27,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "validation", "die_filling"))
 import impact_definitions  # noqa: E402
+from checklist import check, finish  # noqa: E402
 
 work = sys.argv[1]
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 shutil.rmtree(work, ignore_errors=True)
@@ -74,6 +68,4 @@ for die_type, floor in ((1, top - 0.007), (2, top - 0.012)):
               f"type {die_type}, {name}: {got[0]} parcels, {got[1]:.6f} / {got[2]:.6f} m/s "
               f"(expected {n}: {speed:.6f} / {down:.6f})")
 
-if failures:
-    sys.exit(f"{len(failures)} check(s) failed")
-print("all checks passed")
+finish()

@@ -28,15 +28,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "validation", "die_filling"))
 import origin  # noqa: E402
+from checklist import check, finish  # noqa: E402
 
 work = sys.argv[1]
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 shutil.rmtree(work, ignore_errors=True)
@@ -101,6 +95,4 @@ check(np.isfinite(mid) and abs(mid - 0.0049) < 5e-5, f"surface over the bin of t
       "(the 99th percentile of its heights, 4.9 mm above the table, within 0.05 mm)")
 check(sum(np.isfinite(p) for p in profile) == 1, "the other bins have too few parcels for a surface")
 
-if failures:
-    sys.exit(f"{len(failures)} check(s) failed")
-print("all checks passed")
+finish()

@@ -23,14 +23,9 @@ import sys
 import h5py
 import numpy as np
 
+from checklist import check, finish
+
 cgdem, case, work = sys.argv[1:4]
-failures = []
-
-
-def check(ok, what):
-    print(("ok:   " if ok else "FAIL: ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def run(out, *extra):
@@ -77,5 +72,4 @@ check(units == "m" and bool(s[3]["doc"]), f"z_start has units 'm' ({units}) and 
 r = snapshots(split)
 check(3 in r and r[3]["z_start"] is not None and np.array_equal(r[3]["z_start"], s[3]["z_start"]),
       "the restarted run carries the same tracer")
-print("all checks passed" if not failures else f"{len(failures)} check(s) failed")
-sys.exit(1 if failures else 0)
+finish()
