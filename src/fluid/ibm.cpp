@@ -1,6 +1,7 @@
 #include "fluid/ibm.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace cgdem::fluid {
@@ -41,18 +42,54 @@ double nearest_of(const Scene::Frame& f, const std::vector<int>& parts, const Ve
 
 // Fraction of the cube [x - h, x + h] inside the walls when the union of `parts` is all that
 // can cover it: the box and sample positions of Scene::Frame::solid_fraction (n^3 midpoints),
-// each sample tested only against the parts whose bounds contain it.
+// each sample tested only against the parts whose bounds contain it. A box-shaped part
+// (Shape::axis_separable) is tested axis by axis: the samples lie on a lattice, so its n
+// coordinates per axis are tested once each (bounds and interior, the same comparisons as
+// the per-sample test) and a sample is inside when its three are. Same count, bit for bit.
 double sampled_fraction(const Scene::Frame& f, const std::vector<int>& parts, const std::vector<Aabb>& bounds,
                         const Vec3& x, double h, int n) {
   const Vec3 lo = x - Vec3{h, h, h}, hi = x + Vec3{h, h, h};
+  constexpr int kMaxN = 16, kMaxSep = 32;  // n <= 16 (update_ibm); parts beyond 32: per sample
+  std::array<std::array<double, kMaxN>, 3> coord;
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < n; ++i) coord[a][i] = lo[a] + (i + 0.5) * (hi[a] - lo[a]) / n;
+  // per box-shaped candidate: bit i of mask[a] set when coordinate i of axis a is in it
+  std::array<std::array<unsigned, 3>, kMaxSep> mask;
+  std::array<bool, kMaxSep> any_in{}, separable{};
+  int boxes = 0;
+  bool others = false;
+  for (size_t q = 0; q < parts.size(); ++q) {
+    if (q < kMaxSep) separable[q] = f.part_separable(parts[q]);
+    if (!(q < kMaxSep && separable[q])) {
+      others = true;
+      continue;
+    }
+    auto& m = mask[boxes];
+    for (int a = 0; a < 3; ++a) {
+      m[a] = 0;
+      for (int i = 0; i < n; ++i) {
+        const double c = coord[a][i];
+        if (c >= bounds[q].lo[a] && c <= bounds[q].hi[a] && f.part_inside_along(parts[q], a, c)) m[a] |= 1u << i;
+      }
+    }
+    any_in[boxes] = m[0] && m[1] && m[2];
+    ++boxes;
+  }
   int inside = 0;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const Vec3 s{lo.x + (i + 0.5) * (hi.x - lo.x) / n, lo.y + (j + 0.5) * (hi.y - lo.y) / n,
-                     lo.z + (k + 0.5) * (hi.z - lo.z) / n};
+        bool in = false;
+        for (int b = 0; b < boxes && !in; ++b)
+          in = any_in[b] && ((mask[b][0] >> i) & (mask[b][1] >> j) & (mask[b][2] >> k) & 1u);
+        if (in) {
+          ++inside;
+          continue;
+        }
+        if (!others) continue;
+        const Vec3 s{coord[0][i], coord[1][j], coord[2][k]};
         for (size_t q = 0; q < parts.size(); ++q)
-          if (bounds[q].contains(s) && f.part_distance(parts[q], s) < 0) {
+          if (!(q < kMaxSep && separable[q]) && bounds[q].contains(s) && f.part_distance(parts[q], s) < 0) {
             ++inside;
             break;
           }
@@ -128,7 +165,7 @@ std::array<int, 2> index_range(const MacGrid& g, int a, int d, double x0, double
 }  // namespace
 
 bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int samples, IbmFractions& ibm) {
-  if (samples < 1) throw Error("IBM: the number of sub-samples per axis must be >= 1");
+  if (samples < 1 || samples > 16) throw Error("IBM: the number of sub-samples per axis must be 1..16");
   if (ibm.valid && ibm.offsets == frame.offset) return false;
   ibm.offsets = frame.offset;
   ibm.valid = true;

@@ -42,6 +42,13 @@ class Scene {
     double part_distance(int part, const Vec3& x) const;
     Vec3 part_velocity(int part) const { return velocity[scene->parts()[part].body]; }
     Aabb part_bounds(int part) const;
+    // Shape::axis_separable / inside_along of a part, in world coordinates: with them,
+    // part_distance(part, x) < 0 exactly when part_inside_along holds for x's three axes.
+    bool part_separable(int part) const { return scene->parts()[part].shape->axis_separable(); }
+    bool part_inside_along(int part, int axis, double v) const {
+      const Part& p = scene->parts()[part];
+      return p.shape->inside_along(axis, v - offset[p.body][axis]);
+    }
     // phi of eq. (15): min over parts (+inf when the scene is empty).
     double phi(const Vec3& x) const;
     // Wall velocity U_B at x: that of the nearest part's body.

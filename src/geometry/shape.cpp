@@ -69,6 +69,9 @@ class Box final : public Shape {
   }
   Aabb bounds() const override { return {lo_, hi_}; }
   std::string describe() const override { return fmt::format("box(min={}, max={})", v3(lo_), v3(hi_)); }
+  bool axis_separable() const override { return true; }
+  // distance() < 0 iff max(q) < 0, q = |x - c| - h per axis (the outside part is 0 then)
+  bool inside_along(int axis, double v) const override { return std::fabs(v - c_[axis]) - h_[axis] < 0; }
 
  private:
   Vec3 c_, h_, lo_, hi_;

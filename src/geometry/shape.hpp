@@ -38,6 +38,16 @@ class Shape {
   // A box containing the solid (may be unbounded).
   virtual Aabb bounds() const = 0;
   virtual std::string describe() const = 0;
+  // True for a solid whose interior is a product of one open interval per axis (an
+  // axis-aligned box); inside_along(a, v) then says whether the coordinate v of axis a (in
+  // the shape's frame) lies in that axis's interval, with the arithmetic of distance():
+  // distance(x) < 0 exactly when it holds on all three axes. A lattice of n^3 points is
+  // then tested with 3n calls (fluid/ibm.cpp). False (and unused) for every other shape.
+  virtual bool axis_separable() const { return false; }
+  virtual bool inside_along(int axis, double v) const {
+    (void)axis, (void)v;
+    return false;
+  }
 };
 
 using ShapePtr = std::shared_ptr<const Shape>;
