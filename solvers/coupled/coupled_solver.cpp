@@ -171,6 +171,7 @@ CoupledStepStats CoupledSolver::step() {
   { auto t = timers_.scope(t_map_);
     std::swap(mix_old_, por_.mix);
     void_stats_ = ex_.void_fraction(p, w_, air_.eps, por_);           // 3. eps^{n+1}
+    for (int q = 0; q < 2; ++q) capacity_nodes_[q] += void_stats_.capacity_nodes[q];
     ex_.porosity_source(por_, mix_old_, air_.eps, air_.eps_old, st.dt_fluid, src_.mass); }
   if (implicit_ && params_.feedback) {
     implicit_air_step(t_end, st);                                     // 4'-5'. air, drag at u^{n+1}

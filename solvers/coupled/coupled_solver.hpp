@@ -34,6 +34,8 @@
 // (the DEM substeps keep the coefficient of t^n: the parcels' side is explicit in u, and the
 // correction hands them the implicit drag). One process only for now.
 #pragma once
+#include <array>
+
 #include "coupling/exchange.hpp"
 #include "solvers/coupled/implicit_drag.hpp"
 #include "solvers/dem/dem_solver.hpp"
@@ -76,6 +78,9 @@ class CoupledSolver {
   int substeps() const;
 
   const coupling::VoidStats& last_void_stats() const { return void_stats_; }
+  // Kernel capacities next to walls over the steps so far (a restart counts from there):
+  // nodes taken from the exchange's cache of static-wall values, nodes evaluated.
+  std::array<long, 2> capacity_nodes() const { return capacity_nodes_; }
   const coupling::Exchange& exchange() const { return ex_; }
   PhaseTimers& timers() { return timers_; }
 
@@ -91,6 +96,7 @@ class CoupledSolver {
   CoupledParams params_;
   fluid::Sources src_;
   coupling::VoidStats void_stats_;
+  std::array<long, 2> capacity_nodes_{};
   // The walls at time t for the exchange's masks and capacities: the air solver's fractions
   // brought to t (one copy, computed once per step).
   void walls_at(double t);

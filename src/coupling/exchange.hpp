@@ -58,6 +58,7 @@
 // per position (ParcelWeights, in parallel) and handed to the transfers. Deposits run
 // serially in particle order (deterministic); gathers run in parallel.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "coupling/drag.hpp"
@@ -93,6 +94,8 @@ struct VoidStats {
   double grid_volume = 0;     // sum over cells of V_s before clipping [m^3]
   long clipped_cells = 0;     // cells where 1 - V_s/dx^3 < eps_min
   double eps_min_raw = 1;     // smallest 1 - V_s/dx^3 before clipping
+  std::array<long, 2> capacity_nodes{};  // kernel capacities of the nodes near walls holding
+                                         // solid, summed over the radii: from the cache, evaluated
 };
 
 // What step 3 gives besides the porosity eps (exchange.hpp, "Porosity next to walls").
@@ -177,6 +180,9 @@ class Exchange {
   // Kernel capacity C_r of the cells for parcel centres of radius r (porosity.cpp): 1 except
   // at the nodes holding solid (solid > 0) near walls or the domain's ends.
   void capacity(double r, const fluid::Field& solid, fluid::Field& cap) const;
+  // Of the nodes the last call to capacity() needed, how many it took from its cache (the
+  // static walls' values, kept; see porosity.cpp) and how many it evaluated.
+  std::array<long, 2> capacity_nodes() const { return capacity_nodes_; }
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
   // Over MPI ranks their ghost layers on the cut sides must hold the neighbours' values.
@@ -229,6 +235,22 @@ class Exchange {
   bool reachable_part(const Vec3& c, double h, double r, double& frac, Vec3& centroid) const;
   // Face mean of the capacity C on face (i, j, k) of axis d (1 where not normalized).
   double face_capacity(int d, int i, int j, int k) const;
+  // Capacities that no moving part can reach (porosity.cpp, capacity()): a node whose
+  // surroundings are farther than the margin from every moving part's bounds has the
+  // capacity of the static walls alone, computed once and kept. One per parcel radius;
+  // emptied when the scene, the wall fractions or a static body's offset change.
+  struct CapacityCache {
+    const geometry::Scene* scene = nullptr;
+    const fluid::IbmFractions* walls = nullptr;
+    std::vector<Vec3> offsets;           // the bodies' offsets when filled (static ones compared)
+    fluid::Field value;                  // the capacity, where known
+    std::vector<unsigned char> known;    // per cell of the block (index i + nx (j + ny k))
+  };
+  // The cache of radius r, emptied if stale; null when none applies (over MPI ranks, no
+  // walls, or r not a parcel radius of the species).
+  CapacityCache* capacity_cache(double r) const;
+  mutable std::vector<CapacityCache> capacity_cache_;  // per entry of radii_
+  mutable std::array<long, 2> capacity_nodes_{};       // from the cache, evaluated (last call)
   const fluid::IbmFractions* walls_ = nullptr;
   const geometry::Scene::Frame* frame_ = nullptr;
   const VoidFields* void_fields_ = nullptr;

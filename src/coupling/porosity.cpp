@@ -63,7 +63,8 @@ std::vector<unsigned char> Exchange::near_walls(int reach) const {
   const fluid::Field& al = walls_->alpha_cell;  // its layout is cell_layout_'s: index = padded offset
   for (size_t q = 0; q < total; ++q) m[q] = al.data()[q] > 0;
   const std::array<long, 3> st{1, e[0], static_cast<long>(e[0]) * e[1]};
-  for (int d = 0; d < 3; ++d) {  // separable dilation, one axis at a time
+  for (int d = 0; d < 3; ++d) {  // separable dilation, one axis at a time (each t from m alone)
+#pragma omp parallel for schedule(static) if (static_cast<long>(total) > fluid::kOmpMinWork)
     for (int k = 0; k < e[2]; ++k)
       for (int j = 0; j < e[1]; ++j)
         for (int i = 0; i < e[0]; ++i) {
@@ -195,6 +196,24 @@ void Exchange::add_cell_capacities(const std::vector<std::array<int, 3>>& cells,
   }
 }
 
+Exchange::CapacityCache* Exchange::capacity_cache(double r) const {
+  if (sync_ || !(frame_ && frame_->scene && !frame_->scene->empty())) return nullptr;
+  const auto it = std::find(radii_.begin(), radii_.end(), r);
+  if (it == radii_.end()) return nullptr;
+  capacity_cache_.resize(radii_.size());
+  CapacityCache& c = capacity_cache_[it - radii_.begin()];
+  const geometry::Scene& scene = *frame_->scene;
+  bool same = c.scene == &scene && c.walls == walls_ && c.offsets.size() == frame_->offset.size();
+  for (size_t b = 0; same && b < c.offsets.size(); ++b)
+    if (scene.bodies()[b].motion.is_static() && !(c.offsets[b] == frame_->offset[b])) same = false;
+  if (!same) {
+    c.scene = &scene, c.walls = walls_, c.offsets = frame_->offset;
+    c.value = fluid::make_cell_field(g_);
+    c.known.assign(static_cast<size_t>(g_.nx) * g_.ny * g_.nz, 0);
+  }
+  return &c;
+}
+
 void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
   const std::array<int, 3> n = g_.n();
   // Nodes that need it: holding solid, with a non-plain cell within the kernel's reach.
@@ -216,6 +235,7 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
   std::array<int, 3> lo{}, hi{};
   for (int e = 0; e < 3; ++e) lo[e] = cells_.ghost_side[2 * e] ? -1 : 0, hi[e] = cells_.ghost_side[2 * e + 1] ? n[e] : n[e] - 1;
   bool any = false;
+#pragma omp parallel for schedule(static) if (g_.cells() > fluid::kOmpMinWork) reduction(|| : any)
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
@@ -232,7 +252,57 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
         any = true;
       }
   cap.fill(1.0);
+  capacity_nodes_ = {0, 0};
   if (!(sync_ ? sync_->any(any) : any)) return;
+  // A node's capacity is the sum of what the cells around it deposit there, in the same
+  // order whichever other nodes are evaluated, and it depends on the walls within
+  // reach + 1 cells of it (the plain test of its cells), 2 cells (the masked weights of its
+  // cells' sub-cubes) and a half-diagonal more (the sampled wall fractions of those cells).
+  // Where no moving part's bounds come that near, it is the static walls' value: taken
+  // from the cache when known (bit for bit what evaluating it gives), else evaluated and
+  // kept. need = 2 marks a node whose capacity came from the cache.
+  CapacityCache* cache = capacity_cache(r);
+  std::vector<unsigned char> keep;  // per own cell: an evaluated capacity to be kept
+  if (cache) {
+    const geometry::Scene& scene = *frame_->scene;
+    std::vector<geometry::Aabb> moving;
+    const double m = (reach + 2) * g_.dx;
+    for (size_t p = 0; p < scene.parts().size(); ++p)
+      if (!scene.bodies()[scene.parts()[p].body].motion.is_static()) {
+        geometry::Aabb b = frame_->part_bounds(static_cast<int>(p));
+        moving.push_back({b.lo - Vec3{m, m, m}, b.hi + Vec3{m, m, m}});
+      }
+    const std::array<double, 3> len{n[0] * g_.dx, n[1] * g_.dx, n[2] * g_.dx};  // periodic images
+    keep.assign(static_cast<size_t>(n[0]) * n[1] * n[2], 0);
+    any = false;
+    long from_cache = 0;
+#pragma omp parallel for schedule(static) if (g_.cells() > fluid::kOmpMinWork) reduction(|| : any) reduction(+ : from_cache)
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          if (need(i, j, k) != 1) continue;
+          const Vec3 x = g_.cell_centre(i, j, k);
+          bool reached = false;  // on a periodic axis the kernel reaches across the ends too
+          for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy)
+              for (int sz = -1; sz <= 1; ++sz) {
+                if ((sx && !periodic_[0]) || (sy && !periodic_[1]) || (sz && !periodic_[2])) continue;
+                const Vec3 xs = x + Vec3{sx * len[0], sy * len[1], sz * len[2]};
+                for (const auto& b : moving) reached = reached || b.contains(xs);
+              }
+          const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
+          if (!reached && cache->known[q]) {
+            cap(i, j, k) = cache->value(i, j, k);
+            need(i, j, k) = 2;
+            ++from_cache;
+            continue;
+          }
+          keep[q] = !reached;
+          any = true;
+        }
+    capacity_nodes_[0] = from_cache;
+    if (!any) return;
+  }
   // Every cell within the reach of an evaluated node deposits (in index order: serial,
   // deterministic); the nodes' capacities are then complete.
   fluid::Field raw = fluid::make_cell_field(g_);
@@ -258,8 +328,13 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
   if (sync_) sync_->sum_deposits(raw, fluid::kCells);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i)
-        if (need(i, j, k) == 1) cap(i, j, k) = raw(i, j, k);
+      for (int i = 0; i < n[0]; ++i) {
+        if (need(i, j, k) != 1) continue;
+        cap(i, j, k) = raw(i, j, k);
+        ++capacity_nodes_[1];
+        const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
+        if (cache && keep[q]) cache->value(i, j, k) = raw(i, j, k), cache->known[q] = 1;
+      }
 }
 
 }  // namespace cgdem::coupling
