@@ -5,8 +5,8 @@
 // Prints per method the set-up time, seconds per solve to ||r|| <= 1e-8 ||b|| from phi = 0,
 // iterations and true residual (solve-s: mean over the repeats, best-s: the fastest one, as the
 // machine may be shared); last line "pressure-solve-s: <fastest preconditioned, mean>".
-// Methods: pcg-fft, pcg-fft-plain, pcg-mg, pcg-mg2 (mixed precision), pcg-mg-f64, pcg-mg2-f64
-// (double V-cycle), cg, cholmod; the environment variable CGDEM_BENCH_METHODS (comma-separated
+// Methods: pcg-fft, pcg-fft-plain, pcg-mg, pcg-mg2, pcg-mgw3 (mixed precision), pcg-mg-f64,
+// pcg-mg2-f64, pcg-mgw3-f64 (double cycle), cg, cholmod; the environment variable CGDEM_BENCH_METHODS (comma-separated
 // list) restricts the set. best-cpu-s: the least processor time (all threads) of one solve.
 #include <omp.h>
 
@@ -80,7 +80,8 @@ int run_pressure_bench(const PressureBenchArgs& args) {
   std::printf("%-14s %10s %12s %12s %8s %12s %5s %10s\n", "method", "setup-s", "solve-s", "best-s", "iters", "rel-resid",
               "conv", "best-cpu-s");
   double best = std::numeric_limits<double>::infinity();
-  std::vector<std::string> methods = {"pcg-fft", "pcg-fft-plain", "pcg-mg", "pcg-mg2", "pcg-mg-f64", "pcg-mg2-f64", "cg"};
+  std::vector<std::string> methods = {"pcg-fft",    "pcg-fft-plain", "pcg-mg",       "pcg-mg2", "pcg-mgw3",
+                                      "pcg-mg-f64", "pcg-mg2-f64",   "pcg-mgw3-f64", "cg"};
   if (const char* only = std::getenv("CGDEM_BENCH_METHODS")) {  // e.g. "pcg-mg2,pcg-mg2-f64"
     methods.clear();
     std::string list = only;

@@ -46,8 +46,8 @@ bool can_coarsen(const GridSpec& g) {
 }
 }  // namespace
 
-MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec)
-    : nu_(nu), precision_(prec) {
+MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec, Cycle cycle)
+    : nu_(nu), precision_(prec), cycle_(cycle) {
   grids_.push_back(fine);
   while (can_coarsen(grids_.back())) {
     GridSpec c = grids_.back();
@@ -94,24 +94,24 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
 void MultigridPreconditioner::apply(const double* r, double* z) {
   if (precision_ == Precision::Double) {
     b0_ = r, x0_ = z;  // level 0 works in place on the caller's arrays
-    vcycle(0);
+    vcycle(0, true);
     return;
   }
   const long n = grids_[0].cells();
   float* bf = lv_[0].bf.data();
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long c = 0; c < n; ++c) bf[c] = static_cast<float>(r[c]);
-  vcycle32(0);
+  vcycle32(0, true);
   const float* xf = lv_[0].xf.data();
   const double s = scale_;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (long c = 0; c < n; ++c) z[c] = s * static_cast<double>(xf[c]);
 }
 
-// The V-cycle of multigrid.hpp on the float operators (which are scale_ A).
-void MultigridPreconditioner::vcycle32(int l) {
+// The cycle of multigrid.hpp on the float operators (which are scale_ A).
+void MultigridPreconditioner::vcycle32(int l, bool from_zero) {
   Level& L = lv_[l];
-  if (l == levels() - 1) {  // coarsest: (s A)^{-1} b = A^{-1} b / s, in double
+  if (l == levels() - 1) {  // coarsest (only ever from zero): (s A)^{-1} b = A^{-1} b / s, in double
     const long n = static_cast<long>(L.b.size());
     for (long c = 0; c < n; ++c) L.b[c] = L.bf[c];
     coarse_->solve(L.b.data(), L.x.data());
@@ -120,15 +120,16 @@ void MultigridPreconditioner::vcycle32(int l) {
   }
   const Stencil32& S = L.s32;
   float *b = L.bf.data(), *x = L.xf.data();
-  for (int s = 0; s < nu_; ++s) S.gs_pair(b, x, 0, s == 0);  // the first pair starts from x = 0
+  for (int s = 0; s < nu_; ++s) S.gs_pair(b, x, 0, from_zero && s == 0);  // the first pair may start from x = 0
   Level& C = lv_[l + 1];
   S.restrict_residual(b, x, grids_[l + 1], C.bf.data());
-  vcycle32(l + 1);
+  vcycle32(l + 1, true);
+  if (cycle_ == Cycle::W && l + 2 < levels()) vcycle32(l + 1, false);  // the coarsest solve is exact: once
   S.prolong_add(grids_[l + 1], C.xf.data(), x);
   for (int s = 0; s < nu_; ++s) S.gs_pair(b, x, 1, false);
 }
 
-void MultigridPreconditioner::vcycle(int l) {
+void MultigridPreconditioner::vcycle(int l, bool from_zero) {
   Level& L = lv_[l];
   const double* b = l == 0 ? b0_ : L.b.data();
   double* x = l == 0 ? x0_ : L.x.data();
@@ -138,7 +139,7 @@ void MultigridPreconditioner::vcycle(int l) {
     return;
   }
   const Poisson7& A = *L.op;
-  std::fill(x, x + n, 0.0);
+  if (from_zero) std::fill(x, x + n, 0.0);
   for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 0);
   A.residual(b, x, L.r.data());
   // Restriction R = P^T / 8 onto level l+1.
@@ -156,7 +157,8 @@ void MultigridPreconditioner::vcycle(int l) {
               s += L.r[i + long(f.nx) * (j + long(f.ny) * k)];
         C.b[I + long(c.nx) * (J + long(c.ny) * K)] = s / 8;
       }
-  vcycle(l + 1);
+  vcycle(l + 1, true);
+  if (cycle_ == Cycle::W && l + 2 < levels()) vcycle(l + 1, false);
   // Prolongation: piecewise constant.
 #pragma omp parallel for collapse(2) schedule(static) if (f.cells() >= kParallelMin)
   for (int k = 0; k < f.nz; ++k)

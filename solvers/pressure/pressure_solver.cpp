@@ -19,8 +19,8 @@ using Fft = FftPreconditioner;
 using Mg = MultigridPreconditioner;
 
 std::unique_ptr<PressureSolver> pcg_mg(const GridSpec& g, const SolverOptions& o, Engine e, int sweeps,
-                                       Mg::Precision prec) {
-  return std::make_unique<KrylovSolver>(g, o, std::make_unique<Mg>(g, sweeps, prec), e);
+                                       Mg::Precision prec, Mg::Cycle cycle = Mg::Cycle::V) {
+  return std::make_unique<KrylovSolver>(g, o, std::make_unique<Mg>(g, sweeps, prec, cycle), e);
 }
 
 // The method registry: name, one line of documentation, factory. Every reader of a method
@@ -47,10 +47,18 @@ const MethodRow kMethods[] = {
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 1, Mg::Precision::Single); }},
     {{"pcg-mg2", "as pcg-mg with 2 smoothing sweeps per side (the die-filling cases' method)"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 2, Mg::Precision::Single); }},
+    {{"pcg-mgw3", "PCG, preconditioned by a multigrid W-cycle with 3 smoothing sweeps per side (single precision)"},
+     [](const GridSpec& g, const SolverOptions& o, Engine e) {
+       return pcg_mg(g, o, e, 3, Mg::Precision::Single, Mg::Cycle::W);
+     }},
     {{"pcg-mg-f64", "as pcg-mg with the V-cycle in double precision"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 1, Mg::Precision::Double); }},
     {{"pcg-mg2-f64", "as pcg-mg2 with the V-cycle in double precision"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 2, Mg::Precision::Double); }},
+    {{"pcg-mgw3-f64", "as pcg-mgw3 with the W-cycle in double precision"},
+     [](const GridSpec& g, const SolverOptions& o, Engine e) {
+       return pcg_mg(g, o, e, 3, Mg::Precision::Double, Mg::Cycle::W);
+     }},
     {{"cholmod", "sparse Cholesky factorisation of the whole operator (direct reference; slow, large)"},
      [](const GridSpec& g, const SolverOptions& o, Engine) -> std::unique_ptr<PressureSolver> {
        return std::make_unique<DirectSolver>(g, o);

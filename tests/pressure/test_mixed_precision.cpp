@@ -1,6 +1,7 @@
-// The single-precision V-cycle (stencil32.hpp) against the double one: the same operator up to
-// float rounding, nearly symmetric, and independent of the units of the coefficients (the
-// power-of-two scaling). Reference: the double V-cycle of multigrid.hpp applied to the same r.
+// The single-precision V-cycle (stencil32.hpp) against the double one, and the W-cycle against
+// its double twin: the same operator up to float rounding, nearly symmetric, and independent of
+// the units of the coefficients (the power-of-two scaling). Reference: the double cycle of
+// multigrid.hpp applied to the same r.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,17 +36,19 @@ double rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 // coef_scale multiplies every face coefficient (units): the float V-cycle must not care.
-void compare(const char* name, std::array<B, 6> bc, int nx, int ny, int nz, double coef_scale) {
+// nu, cycle: the smoothing sweeps and the cycle of both preconditioners.
+void compare(const char* name, std::array<B, 6> bc, int nx, int ny, int nz, double coef_scale, int nu = 2,
+             Mg::Cycle cycle = Mg::Cycle::V) {
   test::Problem p = test::make_problem(nx, ny, nz, bc);
   for (auto* a : {&p.ax, &p.ay, &p.az})
     for (double& v : *a) v *= coef_scale;
   for (long f = 0; f < long(p.ax.size()); f += 7) p.ax[f] = 0;  // blocked faces (solids)
   Poisson7 op(p.g);
   op.set(p.ax, p.ay, p.az);
-  Mg s(p.g, 2, Mg::Precision::Single), d(p.g, 2, Mg::Precision::Double);
+  Mg s(p.g, nu, Mg::Precision::Single, cycle), d(p.g, nu, Mg::Precision::Double, cycle);
   s.setup(op);
   d.setup(op);
-  ASSERT_GT(s.levels(), 1);
+  ASSERT_GT(s.levels(), cycle == Mg::Cycle::W ? 2 : 1);  // a W-cycle differs from a V-cycle on 3 levels
   const long n = op.n();
   auto r = noise(n, 12345), q = noise(n, 777);
   std::vector<double> zs(n), zd(n), ws(n);
@@ -55,8 +58,9 @@ void compare(const char* name, std::array<B, 6> bc, int nx, int ny, int nz, doub
   const double diff = rel_diff(zs, zd);
   // symmetry of the float operator: (M^-1 r, q) = (r, M^-1 q) up to rounding
   const double asym = std::abs(dot(zs, q) - dot(r, ws)) / std::sqrt(dot(zs, r) * dot(ws, q));
-  std::printf("[ mixed ] %-9s %dx%dx%d scale %.0e: levels %d, float vs double V-cycle %.2e (tol 2e-6), "
-              "asymmetry %.2e (tol 1e-7)\n", name, nx, ny, nz, coef_scale, s.levels(), diff, asym);
+  std::printf("[ mixed ] %-9s %dx%dx%d scale %.0e: levels %d, float vs double %c(%d,%d)-cycle %.2e (tol 2e-6), "
+              "asymmetry %.2e (tol 1e-7)\n", name, nx, ny, nz, coef_scale, s.levels(),
+              cycle == Mg::Cycle::W ? 'W' : 'V', nu, nu, diff, asym);
   EXPECT_LT(diff, 2e-6);  // float rounding (6e-8) through a few smoothing sweeps
   EXPECT_LT(asym, 1e-7);
 }
@@ -68,4 +72,12 @@ TEST(PressureMixedPrecision, SameVcycleAsDouble) {
   compare("wall/open", {B::Wall, B::Wall, B::Wall, B::Wall, B::Wall, B::Open}, 32, 24, 20, 1e30);
   compare("periodic", {B::Periodic, B::Periodic, B::Periodic, B::Periodic, B::Open, B::Open}, 32, 24, 20, 1.0);
   compare("periodic", {B::Periodic, B::Periodic, B::Periodic, B::Periodic, B::Periodic, B::Periodic}, 24, 24, 24, 1.0);
+}
+
+// The W-cycle ("pcg-mgw3"): the same checks on grids of three and (96x64x48) four levels.
+TEST(PressureMixedPrecision, SameWcycleAsDouble) {
+  compare("wall/open", {B::Wall, B::Wall, B::Wall, B::Wall, B::Wall, B::Open}, 96, 64, 48, 1.0, 3, Mg::Cycle::W);
+  compare("wall/open", {B::Wall, B::Wall, B::Wall, B::Wall, B::Wall, B::Open}, 47, 39, 33, 1e-30, 3, Mg::Cycle::W);
+  compare("periodic", {B::Periodic, B::Periodic, B::Periodic, B::Periodic, B::Open, B::Open}, 64, 48, 40, 1.0, 3,
+          Mg::Cycle::W);
 }
