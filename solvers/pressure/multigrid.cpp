@@ -46,8 +46,9 @@ bool can_coarsen(const GridSpec& g) {
 }
 }  // namespace
 
-MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec, Cycle cycle)
-    : nu_(nu), precision_(prec), cycle_(cycle) {
+MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec, Cycle cycle,
+                                                 double omega)
+    : nu_(nu), precision_(prec), cycle_(cycle), omega_(omega) {
   grids_.push_back(fine);
   while (can_coarsen(grids_.back())) {
     GridSpec c = grids_.back();
@@ -87,7 +88,7 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
   coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
   if (precision_ == Precision::Single) {
     scale_ = stencil32_scale(op);
-    for (auto& L : lv_) L.s32.set(*L.op, scale_);
+    for (auto& L : lv_) L.s32.set(*L.op, scale_, omega_);
   }
 }
 
@@ -140,7 +141,7 @@ void MultigridPreconditioner::vcycle(int l, bool from_zero) {
   }
   const Poisson7& A = *L.op;
   if (from_zero) std::fill(x, x + n, 0.0);
-  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 0);
+  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 0, omega_);
   A.residual(b, x, L.r.data());
   // Restriction R = P^T / 8 onto level l+1.
   const GridSpec &f = grids_[l], &c = grids_[l + 1];
@@ -167,7 +168,7 @@ void MultigridPreconditioner::vcycle(int l, bool from_zero) {
       double* xf = x + long(f.nx) * (j + long(f.ny) * k);
       for (int i = 0; i < f.nx; ++i) xf[i] += xc[i / 2];
     }
-  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 1);
+  for (int s = 0; s < nu_; ++s) A.gauss_seidel_pair(b, x, 1, omega_);
 }
 
 }  // namespace cgdem::pressure

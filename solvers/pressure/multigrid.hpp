@@ -38,8 +38,10 @@ class MultigridPreconditioner : public Preconditioner {
   static constexpr long kCoarsestCells = 4000;
   enum class Precision { Single, Double };
   enum class Cycle { V, W };
+  // omega: relaxation factor of the red-black smoother (1: Gauss-Seidel; the same in every
+  // half-sweep, so the cycle stays symmetric).
   explicit MultigridPreconditioner(const GridSpec& fine, int nu = 1, Precision prec = Precision::Single,
-                                   Cycle cycle = Cycle::V);
+                                   Cycle cycle = Cycle::V, double omega = 1.0);
   ~MultigridPreconditioner() override;
   void setup(const Poisson7& op) override;
   void apply(const double* r, double* z) override;
@@ -63,6 +65,7 @@ class MultigridPreconditioner : public Preconditioner {
   int nu_;
   Precision precision_;
   Cycle cycle_;
+  double omega_;
   double scale_ = 1;  // Single: the float operators are scale_ A
   const double* b0_ = nullptr;  // level 0: the caller's r and z
   double* x0_ = nullptr;

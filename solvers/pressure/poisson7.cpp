@@ -213,7 +213,7 @@ void Poisson7::project_floating(double* v) const {
   }
 }
 
-void Poisson7::gauss_seidel_color(const double* b, double* x, int color) const {
+void Poisson7::gauss_seidel_color(const double* b, double* x, int color, double omega) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const long plane = long(nx) * ny;
   // An odd periodic y or z axis makes rows 0 and n-1 hold neighbouring cells of one colour:
@@ -221,21 +221,21 @@ void Poisson7::gauss_seidel_color(const double* b, double* x, int color) const {
   const bool odd_wrap = (periodic(1) && ny % 2) || (periodic(2) && nz % 2);
 #pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap && plane * nz >= kParallelMin)
   for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color);
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, omega);
 }
 
-void Poisson7::gauss_seidel_pair(const double* b, double* x, int first) const {
+void Poisson7::gauss_seidel_pair(const double* b, double* x, int first, double omega) const {
   const int ny = g_.ny, nz = g_.nz;
   const long plane = long(g_.nx) * ny;
   const bool odd_wrap = (periodic(1) && ny % 2) || (periodic(2) && nz % 2);
   if (odd_wrap || periodic(2) || nz < 4) {  // plane 0 and nz-1 are neighbours: two plain sweeps
-    gauss_seidel_color(b, x, first);
-    gauss_seidel_color(b, x, 1 - first);
+    gauss_seidel_color(b, x, first, omega);
+    gauss_seidel_color(b, x, 1 - first, omega);
     return;
   }
   const int second = 1 - first;
   auto plane_sweep = [&](int k, int color) {
-    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color);
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, omega);
   };
 #pragma omp parallel if (plane * nz >= kParallelMin)
   {
@@ -251,8 +251,8 @@ void Poisson7::gauss_seidel_pair(const double* b, double* x, int first) const {
   }
 }
 
-// One colour of row (j, k): x_c = (b_c + sum_nb w_f x_nb) / D_c.
-void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const {
+// One colour of row (j, k): x_c = (b_c + sum_nb w_f x_nb) / D_c (over-relaxed if omega != 1).
+void Poisson7::gs_row(const double* b, double* x, int j, int k, int color, double omega) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
     {
@@ -270,7 +270,7 @@ void Poisson7::gs_row(const double* b, double* x, int j, int k, int color) const
         double s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
         if (i > 0) s += wxr[i] * xr[i - 1]; else if (px) s += wxr[0] * xr[nx - 1];
         if (i < nx - 1) s += wxr[i + 1] * xr[i + 1]; else if (px) s += wxr[0] * xr[0];
-        xr[i] = s / d[i];
+        xr[i] = omega == 1.0 ? s / d[i] : xr[i] + omega * (s / d[i] - xr[i]);
       }
     }
 }

@@ -34,14 +34,15 @@ class Poisson7 {
   // y = A x and returns x . y (row partial sums added in row order: independent of threads).
   double apply_dot(const double* x, double* y) const;
   // One Gauss-Seidel half-sweep over the cells with (i+j+k) % 2 == color:
-  //   x_c = (b_c + sum_nb w_f x_nb) / D_c   (cells with D_c = 0 are left alone).
-  void gauss_seidel_color(const double* b, double* x, int color) const;
+  //   x_c = (b_c + sum_nb w_f x_nb) / D_c   (cells with D_c = 0 are left alone);
+  // omega != 1: over-relaxed, x_c += omega ((b_c + sum_nb w_f x_nb) / D_c - x_c).
+  void gauss_seidel_color(const double* b, double* x, int color, double omega = 1.0) const;
   // The two half-sweeps `first` then 1 - first in one pass over memory: the second colour of
   // plane k-1 is updated right after the first colour of plane k (its last neighbour to
   // change). Bitwise the same as gauss_seidel_color(first) then (1 - first), for any number of
   // threads (each thread's chunk of planes defers the second colour of its two end planes until
   // all threads have done their first colour).
-  void gauss_seidel_pair(const double* b, double* x, int first) const;
+  void gauss_seidel_pair(const double* b, double* x, int first, double omega = 1.0) const;
   // Subtract, on every floating component, its mean (deterministic serial sums).
   void project_floating(double* v) const;
 
@@ -74,7 +75,7 @@ class Poisson7 {
   template <bool kResidual>
   void apply_rows(const double* x, double* y, const double* b, double* row_dot = nullptr) const;
   mutable std::vector<double> row_dot_;
-  void gs_row(const double* b, double* x, int j, int k, int color) const;
+  void gs_row(const double* b, double* x, int j, int k, int color, double omega) const;
 
   GridSpec g_;
   std::vector<double> ax_, ay_, az_, wx_, wy_, wz_, diag_, open_;

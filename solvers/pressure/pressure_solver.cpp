@@ -18,9 +18,13 @@ using Engine = KrylovSolver::Engine;
 using Fft = FftPreconditioner;
 using Mg = MultigridPreconditioner;
 
+// Smoother relaxation of the W-cycle methods: 1.2 took the die-filling bench from 10.7 to 9.3
+// iterations per fluid step (docs/pressure.md, "Cycle shape and coarse levels").
+constexpr double kOmegaW = 1.2;
+
 std::unique_ptr<PressureSolver> pcg_mg(const GridSpec& g, const SolverOptions& o, Engine e, int sweeps,
-                                       Mg::Precision prec, Mg::Cycle cycle = Mg::Cycle::V) {
-  return std::make_unique<KrylovSolver>(g, o, std::make_unique<Mg>(g, sweeps, prec, cycle), e);
+                                       Mg::Precision prec, Mg::Cycle cycle = Mg::Cycle::V, double omega = 1.0) {
+  return std::make_unique<KrylovSolver>(g, o, std::make_unique<Mg>(g, sweeps, prec, cycle, omega), e);
 }
 
 // The method registry: name, one line of documentation, factory. Every reader of a method
@@ -47,9 +51,9 @@ const MethodRow kMethods[] = {
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 1, Mg::Precision::Single); }},
     {{"pcg-mg2", "as pcg-mg with 2 smoothing sweeps per side (the die-filling cases' method)"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 2, Mg::Precision::Single); }},
-    {{"pcg-mgw3", "PCG, preconditioned by a multigrid W-cycle with 3 smoothing sweeps per side (single precision)"},
+    {{"pcg-mgw3", "PCG, preconditioned by a multigrid W-cycle (3 sweeps per side, over-relaxed by 1.2, single precision)"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) {
-       return pcg_mg(g, o, e, 3, Mg::Precision::Single, Mg::Cycle::W);
+       return pcg_mg(g, o, e, 3, Mg::Precision::Single, Mg::Cycle::W, kOmegaW);
      }},
     {{"pcg-mg-f64", "as pcg-mg with the V-cycle in double precision"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 1, Mg::Precision::Double); }},
@@ -57,7 +61,7 @@ const MethodRow kMethods[] = {
      [](const GridSpec& g, const SolverOptions& o, Engine e) { return pcg_mg(g, o, e, 2, Mg::Precision::Double); }},
     {{"pcg-mgw3-f64", "as pcg-mgw3 with the W-cycle in double precision"},
      [](const GridSpec& g, const SolverOptions& o, Engine e) {
-       return pcg_mg(g, o, e, 3, Mg::Precision::Double, Mg::Cycle::W);
+       return pcg_mg(g, o, e, 3, Mg::Precision::Double, Mg::Cycle::W, kOmegaW);
      }},
     {{"cholmod", "sparse Cholesky factorisation of the whole operator (direct reference; slow, large)"},
      [](const GridSpec& g, const SolverOptions& o, Engine) -> std::unique_ptr<PressureSolver> {

@@ -17,7 +17,7 @@ double stencil32_scale(const Poisson7& op) {
   return std::ldexp(1.0, -static_cast<int>(std::lround(std::log2(m))));
 }
 
-void Stencil32::set(const Poisson7& op, double scale) {
+void Stencil32::set(const Poisson7& op, double scale, double omega) {
   g_ = op.grid();
   px_ = op.periodic(0), py_ = op.periodic(1), pz_ = op.periodic(2);
   auto copy = [scale](const std::vector<double>& in, std::vector<float>& out) {
@@ -31,21 +31,33 @@ void Stencil32::set(const Poisson7& op, double scale) {
   copy(op.wz(), wz_);
   copy(op.diag(), d_);
   id_.resize(d_.size());
+  const float om = static_cast<float>(omega);
+  keep_ = 1.0f - om;
   const long n = static_cast<long>(d_.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (long c = 0; c < n; ++c) id_[c] = d_[c] > 0 ? 1.0f / d_[c] : 0.0f;
+  for (long c = 0; c < n; ++c) id_[c] = d_[c] > 0 ? om / d_[c] : 0.0f;
 }
 
 namespace {
 // The update of the cells i = i0, i0 + 2, ... < nx of one row that have both x neighbours in the
 // row (1 <= i <= nx - 2), written without branches so that it vectorises (stride 2), in the
-// summation order of Poisson7::gs_row; id = 1/D (0 where D = 0: that cell is set to 0).
+// summation order of Poisson7::gs_row; id = omega/D (0 where D = 0: that cell is set to keep x),
+// keep = 1 - omega (0: the plain update, which does not read x_c).
 // Compiled for AVX2 and the baseline; the arithmetic is the same IEEE float either way.
 __attribute__((target_clones("avx2", "default"))) void gs_interior(
     int i0, int nx, const float* __restrict br, const float* __restrict id, const float* __restrict wxr,
     const float* __restrict ws, const float* __restrict wn, const float* __restrict wb, const float* __restrict wt,
-    const float* xs, const float* xn, const float* xb, const float* xt, float* xr) {
+    const float* xs, const float* xn, const float* xb, const float* xt, float* xr, float keep) {
   const int first = i0 == 0 ? 2 : i0;
+  if (keep != 0.0f) {
+    for (int i = first; i < nx - 1; i += 2) {
+      float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
+      s += wxr[i] * xr[i - 1];
+      s += wxr[i + 1] * xr[i + 1];
+      xr[i] = keep * xr[i] + s * id[i];
+    }
+    return;
+  }
   for (int i = first; i < nx - 1; i += 2) {
     float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
     s += wxr[i] * xr[i - 1];
@@ -55,8 +67,7 @@ __attribute__((target_clones("avx2", "default"))) void gs_interior(
 }
 }  // namespace
 
-// One colour of row (j, k), as Poisson7::gs_row in float. mode kNormal: the plain update;
-// kZeroFirst: x = 0 on entry, so x_c = b_c / D_c without reading neighbours.
+// One colour of row (j, k), as Poisson7::gs_row in float; the modes: stencil32.hpp.
 void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const long c0 = long(nx) * (j + long(ny) * k);
@@ -71,14 +82,15 @@ void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode m
   const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
   const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
       row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
+  const float keep = mode == Mode::kFromZero ? 0.0f : keep_;
   auto edge = [&](int i) {  // i = 0 or nx - 1: the x neighbours may wrap or be absent
     float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
     if (i > 0) s += wxr[i] * xr[i - 1]; else if (px_) s += wxr[0] * xr[nx - 1];
     if (i < nx - 1) s += wxr[i + 1] * xr[i + 1]; else if (px_) s += wxr[0] * xr[0];
-    xr[i] = s * id[i];
+    xr[i] = keep != 0.0f ? keep * xr[i] + s * id[i] : s * id[i];
   };
   if (i0 == 0) edge(0);
-  gs_interior(i0, nx, br, id, wxr, ws, wn, wb, wt, xs, xn, xb, xt, xr);
+  gs_interior(i0, nx, br, id, wxr, ws, wn, wb, wt, xs, xn, xb, xt, xr, keep);
   if ((nx - 1 - i0) % 2 == 0 && nx - 1 > 0) edge(nx - 1);
 }
 
@@ -99,7 +111,7 @@ void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) co
     std::fill(x, x + n(), 0.0f);
     zero_start = false;
   }
-  const Mode m1 = zero_start ? Mode::kZeroFirst : Mode::kNormal, m2 = Mode::kNormal;
+  const Mode m1 = zero_start ? Mode::kZeroFirst : Mode::kNormal, m2 = zero_start ? Mode::kFromZero : Mode::kNormal;
   const int second = 1 - first;
   if (odd_wrap || pz_ || nz < 4) {  // plane 0 and nz-1 are neighbours: two plain sweeps
     gs_color(b, x, first, m1);

@@ -13,6 +13,7 @@
 // Red-black Gauss-Seidel, the same sweep order (and the same thread-independent plane chunking
 // of the fused pair) as Poisson7::gauss_seidel_pair, see poisson7.hpp:
 //   x_c = (b_c + sum_nb w_f x_nb) * (1/D_c)
+// or over-relaxed (omega != 1, set()): x_c = (1 - omega) x_c + (b_c + sum_nb w_f x_nb) * (omega/D_c).
 // A cell with D_c = 0 (all faces blocked) gets x_c = 0, where the double smoother leaves it
 // alone: such a cell, and the fine cells under a coarse one, form floating components that
 // the Krylov solver projects to mean zero after the preconditioner, so z is the same; the
@@ -28,8 +29,9 @@ namespace cgdem::pressure {
 
 class Stencil32 {
  public:
-  // Copies op's weights and diagonal times `scale` in single precision.
-  void set(const Poisson7& op, double scale);
+  // Copies op's weights and diagonal times `scale` in single precision; omega: the relaxation
+  // factor of the smoother (1: plain Gauss-Seidel).
+  void set(const Poisson7& op, double scale, double omega = 1.0);
 
   // Two half-sweeps, colour `first` then 1 - first. zero_start: x is taken as 0 on entry and
   // need not be initialised (the first colour is then b_c / D_c).
@@ -43,14 +45,18 @@ class Stencil32 {
   const GridSpec& grid() const { return g_; }
 
  private:
-  enum class Mode { kNormal, kZeroFirst };
+  // kNormal: the update above; kFromZero: the same with x_c = 0 before it (the second colour of
+  // a pair that starts from x = 0, whose x_c is not initialised); kZeroFirst: the first colour of
+  // that pair (x = 0 around it: x_c = b_c omega/D_c).
+  enum class Mode { kNormal, kFromZero, kZeroFirst };
   void gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const;
   void gs_color(const float* b, float* x, int color, Mode mode) const;
   void residual_row(const float* b, const float* x, int j, int k, float* r) const;
 
   GridSpec g_;
   bool px_ = false, py_ = false, pz_ = false;
-  std::vector<float> wx_, wy_, wz_, d_, id_;  // id_ = 1/D (0 where D = 0)
+  std::vector<float> wx_, wy_, wz_, d_, id_;  // id_ = omega/D (0 where D = 0)
+  float keep_ = 0;                            // 1 - omega
 };
 
 // Power of two nearest to 1 / max(D) of op (1 if D = 0 everywhere).
