@@ -81,7 +81,7 @@ void read_air_and_coupling(const Section& s, const DemParams& dem, AirCase& a) {
 // a.mpi_preconditioner.
 void read_pressure(const Section& ps, AirCase& a) {
   fluid::FluidParams& f = a.fluid;
-  f.pressure.method = ps.string_or("method", "pcg-mg2", pressure::pressure_method_names());
+  f.pressure.method = ps.string_or("method", "pcg-mgw3", pressure::pressure_method_names());
   f.pressure.krylov = ps.string_or("krylov", "sundials", {"sundials", "fused"});
   f.pressure.rel_tol = ps.number_or("tolerance", f.pressure.rel_tol, Range{0, 1, true, true});
   f.pressure.max_iter = static_cast<int>(ps.integer_or("max_iterations", f.pressure.max_iter, Range::closed(1, 1e6)));

@@ -22,7 +22,7 @@
 //                             # at the step's end velocity, solved with the air by KINSOL
 //                             # (solvers/coupled/implicit_drag.hpp; one process only)
 //   ibm_samples = 4           # n^3 sub-samples per cell for the wall fraction alpha
-//   [air.pressure]  method = "pcg-mg2" (fastest on the die-filling grid: docs/pressure.md),
+//   [air.pressure]  method = "pcg-mgw3" (fastest on the die-filling grid: docs/pressure.md),
 //                   krylov = "sundials" (SUNDIALS PCG; "fused": the same recurrence, fewer passes),
 //                   tolerance = 1e-8 (in (0, 1)), max_iterations = 500 (1 .. 1e6),
 //                   stage_tolerance = 1e-4 (in (0, 1); the Heun stage-1 solve, time_order = 2),
