@@ -130,8 +130,8 @@ void Exchange::porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Fi
     for (auto& f : vs_r) sync_->copy_ghosts(f, fluid::kCells);
   std::vector<fluid::Field> cap(radii_.size(), fluid::make_cell_field(g_));
   for (size_t r = 0; r < radii_.size(); ++r) {
-    capacity(radii_[r], vs_r[r], cap[r]);
-    for (int q = 0; q < 2; ++q) st.capacity_nodes[q] += capacity_nodes_[q];
+    const std::array<long, 2> nodes = capacity(radii_[r], vs_r[r], cap[r]);
+    for (int q = 0; q < 2; ++q) st.capacity_nodes[q] += nodes[q];
   }
   vf.cap = cap[0];
   const double vc = g_.dx * g_.dx * g_.dx;

@@ -178,11 +178,10 @@ class Exchange {
   // The walls' positions for the capacities (phi of eq. 15; null: no walls). Must stay valid.
   void set_frame(const geometry::Scene::Frame* frame) { frame_ = frame; }
   // Kernel capacity C_r of the cells for parcel centres of radius r (porosity.cpp): 1 except
-  // at the nodes holding solid (solid > 0) near walls or the domain's ends.
-  void capacity(double r, const fluid::Field& solid, fluid::Field& cap) const;
-  // Of the nodes the last call to capacity() needed, how many it took from its cache (the
-  // static walls' values, kept; see porosity.cpp) and how many it evaluated.
-  std::array<long, 2> capacity_nodes() const { return capacity_nodes_; }
+  // at the nodes holding solid (solid > 0) near walls or the domain's ends. Returns how
+  // many of the nodes it needed it took from its cache of the static walls' values
+  // (porosity.cpp) and how many it evaluated.
+  std::array<long, 2> capacity(double r, const fluid::Field& solid, fluid::Field& cap) const;
 
   // Wall fractions used to mask the weights (null: no walls). The pointer must stay valid.
   // Over MPI ranks their ghost layers on the cut sides must hold the neighbours' values.
@@ -250,7 +249,6 @@ class Exchange {
   // walls, or r not a parcel radius of the species).
   CapacityCache* capacity_cache(double r) const;
   mutable std::vector<CapacityCache> capacity_cache_;  // per entry of radii_
-  mutable std::array<long, 2> capacity_nodes_{};       // from the cache, evaluated (last call)
   const fluid::IbmFractions* walls_ = nullptr;
   const geometry::Scene::Frame* frame_ = nullptr;
   const VoidFields* void_fields_ = nullptr;

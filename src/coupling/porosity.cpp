@@ -203,10 +203,7 @@ Exchange::CapacityCache* Exchange::capacity_cache(double r) const {
   capacity_cache_.resize(radii_.size());
   CapacityCache& c = capacity_cache_[it - radii_.begin()];
   const geometry::Scene& scene = *frame_->scene;
-  bool same = c.scene == &scene && c.walls == walls_ && c.offsets.size() == frame_->offset.size();
-  for (size_t b = 0; same && b < c.offsets.size(); ++b)
-    if (scene.bodies()[b].motion.is_static() && !(c.offsets[b] == frame_->offset[b])) same = false;
-  if (!same) {
+  if (!(c.scene == &scene && c.walls == walls_ && scene.same_static_placement(c.offsets, frame_->offset))) {
     c.scene = &scene, c.walls = walls_, c.offsets = frame_->offset;
     c.value = fluid::make_cell_field(g_);
     c.known.assign(static_cast<size_t>(g_.nx) * g_.ny * g_.nz, 0);
@@ -214,7 +211,7 @@ Exchange::CapacityCache* Exchange::capacity_cache(double r) const {
   return &c;
 }
 
-void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
+std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) const {
   const std::array<int, 3> n = g_.n();
   // Nodes that need it: holding solid, with a non-plain cell within the kernel's reach.
   // A cell is plain when no wall lies within the kernel's reach of any point of it nor
@@ -252,8 +249,8 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
         any = true;
       }
   cap.fill(1.0);
-  capacity_nodes_ = {0, 0};
-  if (!(sync_ ? sync_->any(any) : any)) return;
+  std::array<long, 2> nodes{};  // from the cache, evaluated
+  if (!(sync_ ? sync_->any(any) : any)) return nodes;
   // A node's capacity is the sum of what the cells around it deposit there, in the same
   // order whichever other nodes are evaluated, and it depends on the walls within
   // reach + 1 cells of it (the plain test of its cells), 2 cells (the masked weights of its
@@ -265,14 +262,21 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
   std::vector<unsigned char> keep;  // per own cell: an evaluated capacity to be kept
   if (cache) {
     const geometry::Scene& scene = *frame_->scene;
+    // The moving parts' bounds widened by the margin, with their images across the ends of
+    // periodic axes (the kernel reaches across them).
     std::vector<geometry::Aabb> moving;
     const double m = (reach + 2) * g_.dx;
-    for (size_t p = 0; p < scene.parts().size(); ++p)
-      if (!scene.bodies()[scene.parts()[p].body].motion.is_static()) {
-        geometry::Aabb b = frame_->part_bounds(static_cast<int>(p));
-        moving.push_back({b.lo - Vec3{m, m, m}, b.hi + Vec3{m, m, m}});
-      }
-    const std::array<double, 3> len{n[0] * g_.dx, n[1] * g_.dx, n[2] * g_.dx};  // periodic images
+    for (int p = 0; p < static_cast<int>(scene.parts().size()); ++p) {
+      if (scene.part_is_static(p)) continue;
+      const geometry::Aabb b = frame_->part_bounds(p);
+      for (int sx = -1; sx <= 1; ++sx)
+        for (int sy = -1; sy <= 1; ++sy)
+          for (int sz = -1; sz <= 1; ++sz) {
+            if ((sx && !periodic_[0]) || (sy && !periodic_[1]) || (sz && !periodic_[2])) continue;
+            const Vec3 s{sx * n[0] * g_.dx, sy * n[1] * g_.dx, sz * n[2] * g_.dx};
+            moving.push_back({b.lo - Vec3{m, m, m} + s, b.hi + Vec3{m, m, m} + s});
+          }
+    }
     keep.assign(static_cast<size_t>(n[0]) * n[1] * n[2], 0);
     any = false;
     long from_cache = 0;
@@ -282,14 +286,8 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
         for (int i = 0; i < n[0]; ++i) {
           if (need(i, j, k) != 1) continue;
           const Vec3 x = g_.cell_centre(i, j, k);
-          bool reached = false;  // on a periodic axis the kernel reaches across the ends too
-          for (int sx = -1; sx <= 1; ++sx)
-            for (int sy = -1; sy <= 1; ++sy)
-              for (int sz = -1; sz <= 1; ++sz) {
-                if ((sx && !periodic_[0]) || (sy && !periodic_[1]) || (sz && !periodic_[2])) continue;
-                const Vec3 xs = x + Vec3{sx * len[0], sy * len[1], sz * len[2]};
-                for (const auto& b : moving) reached = reached || b.contains(xs);
-              }
+          bool reached = false;
+          for (const auto& b : moving) reached = reached || b.contains(x);
           const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
           if (!reached && cache->known[q]) {
             cap(i, j, k) = cache->value(i, j, k);
@@ -300,8 +298,8 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
           keep[q] = !reached;
           any = true;
         }
-    capacity_nodes_[0] = from_cache;
-    if (!any) return;
+    nodes[0] = from_cache;
+    if (!any) return nodes;
   }
   // Every cell within the reach of an evaluated node deposits (in index order: serial,
   // deterministic); the nodes' capacities are then complete.
@@ -331,10 +329,11 @@ void Exchange::capacity(double r, const fluid::Field& solid, fluid::Field& cap) 
       for (int i = 0; i < n[0]; ++i) {
         if (need(i, j, k) != 1) continue;
         cap(i, j, k) = raw(i, j, k);
-        ++capacity_nodes_[1];
+        ++nodes[1];
         const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
         if (cache && keep[q]) cache->value(i, j, k) = raw(i, j, k), cache->known[q] = 1;
       }
+  return nodes;
 }
 
 }  // namespace cgdem::coupling

@@ -18,7 +18,7 @@ struct Parts {
 Parts split_parts(const Scene& scene) {
   Parts p;
   for (size_t i = 0; i < scene.parts().size(); ++i)
-    (scene.bodies()[scene.parts()[i].body].motion.is_static() ? p.fixed : p.moving).push_back(static_cast<int>(i));
+    (scene.part_is_static(static_cast<int>(i)) ? p.fixed : p.moving).push_back(static_cast<int>(i));
   return p;
 }
 
@@ -183,10 +183,8 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
   const Scene& scene = *frame.scene;
   const Parts parts = split_parts(scene);
   auto& c = ibm.cache;
-  bool same_static = c.valid && c.scene == &scene && c.samples == samples && c.n == g.n() &&
-                     c.offsets.size() == frame.offset.size();
-  for (size_t b = 0; same_static && b < frame.offset.size(); ++b)
-    if (scene.bodies()[b].motion.is_static() && !(c.offsets[b] == frame.offset[b])) same_static = false;
+  const bool same_static = c.valid && c.scene == &scene && c.samples == samples && c.n == g.n() &&
+                           scene.same_static_placement(c.offsets, frame.offset);
   long sampled = 0;
   if (!same_static) {
     build_static(g, frame, parts, samples, c, sampled);

@@ -47,6 +47,13 @@ double Scene::Frame::part_distance(int part, const Vec3& x) const {
   return p.shape->distance(x - offset[p.body]);
 }
 
+bool Scene::same_static_placement(const std::vector<Vec3>& a, const std::vector<Vec3>& b) const {
+  if (a.size() != bodies_.size() || b.size() != bodies_.size()) return false;
+  for (size_t i = 0; i < bodies_.size(); ++i)
+    if (bodies_[i].motion.is_static() && !(a[i] == b[i])) return false;
+  return true;
+}
+
 Aabb Scene::Frame::part_bounds(int part) const {
   const Part& p = scene->parts()[part];
   return p.shape->bounds().shifted(offset[p.body]);

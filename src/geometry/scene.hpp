@@ -64,6 +64,11 @@ class Scene {
   const std::vector<Part>& parts() const { return parts_; }
   const std::vector<Body>& bodies() const { return bodies_; }
   bool empty() const { return parts_.empty(); }
+  // Whether part p belongs to a body that never moves.
+  bool part_is_static(int p) const { return bodies_[parts_[p].body].motion.is_static(); }
+  // Whether two sets of body offsets (Frame::offset) place every static body alike: caches
+  // of the static walls stay valid between them.
+  bool same_static_placement(const std::vector<Vec3>& a, const std::vector<Vec3>& b) const;
   Frame at(double t) const;
   std::string describe() const;
 
