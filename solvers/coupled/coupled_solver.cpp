@@ -146,7 +146,7 @@ void CoupledSolver::advance_particles(int n_sub) {
   }
   weights_fresh_ = false;  // the parcels move (and may be re-sorted)
   std::fill(p.j_drag.begin(), p.j_drag.end(), Vec3{});
-  for (int s = 0; s < n_sub; ++s) dem_.step();  // kicks add to j_drag (which moves with re-sorts)
+  dem_.advance(n_sub);  // the kicks add to j_drag (which moves with re-sorts)
 }
 
 CoupledStepStats CoupledSolver::step() {

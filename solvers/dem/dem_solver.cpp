@@ -1,4 +1,9 @@
+// No floating-point contraction: the x86-64-v3 build of the kicks (which has FMA) computes
+// the same bits as the baseline one.
+#pragma GCC optimize("fp-contract=off")
 #include "solvers/dem/dem_solver.hpp"
+
+#include <omp.h>
 
 #include <fmt/format.h>
 
@@ -36,48 +41,160 @@ DemSolver::DemSolver(std::vector<Species> species, const contact::ContactModel& 
 
 namespace {
 
-// Half kick of particle i (see the header): v += h F/m (with air: the implicit drag), w += h T/I.
-inline void kick_one(Particles& p, int i, double h, bool air) {
-  if (air) {
-    const double hm = h * p.inv_mass[i];
-    const Vec3 v0 = p.v[i];
-    const double c = p.drag[i];
-    const Vec3 v1 = (1.0 / (1.0 + hm * c)) * (v0 + hm * (p.force[i] + c * p.u_fluid[i]));
-    // Work of this kick's air impulse, exact for the kinetic energy it changes.
-    const Vec3 j = (h * c) * (p.u_fluid[i] - v1);
-    p.j_drag[i] += j;
-    p.w_fluid[i] += dot(h * p.f_ext[i] + j, 0.5 * (v0 + v1));
-    p.v[i] = v1;
-  } else {
-    p.v[i] += (h * p.inv_mass[i]) * p.force[i];
-  }
-  p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
-}
+// The arrays a half kick reads and writes, as plain pointers to their doubles (a Vec3 is
+// three): the loops below then keep them in registers instead of reloading each vector's
+// data pointer after every store, and the compiler can vectorize over particles.
+struct KickArrays {
+  double* __restrict v;
+  double* __restrict omega;
+  const double* __restrict force;
+  const double* __restrict torque;
+  const double* __restrict f_ext;
+  const double* __restrict u_fluid;
+  double* __restrict j_drag;
+  double* __restrict w_fluid;
+  const double* __restrict drag;
+  const double* __restrict inv_mass;
+  const double* __restrict inv_inertia;
+  explicit KickArrays(Particles& p)
+      : v(&p.v.data()->x),
+        omega(&p.omega.data()->x),
+        force(&p.force.data()->x),
+        torque(&p.torque.data()->x),
+        f_ext(&p.f_ext.data()->x),
+        u_fluid(&p.u_fluid.data()->x),
+        j_drag(&p.j_drag.data()->x),
+        w_fluid(p.w_fluid.data()),
+        drag(p.drag.data()),
+        inv_mass(p.inv_mass.data()),
+        inv_inertia(p.inv_inertia.data()) {}
+};
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "KickArrays reads a Vec3 array as doubles");
 
-// Half kick and drift of the particles 0..n-1 (the owned ones: ghosts are refreshed from
-// their owners) in one pass (one parallel region per step instead of three); returns
-// max |x_i - x_at_build_i|^2 for the rebuild test (0 when there is no build yet).
-double kick_and_drift(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool air) {
-  const bool have_build = x_at_build.size() == p.size();
+// Half kicks (see the header) and the drift of the particles i0..i1-1, in blocks of kBlock
+// particles whose data stay in the first-level cache. Per half kick:
+//   v1 = (1/(1 + hm c)) (v0 + hm (F + c u)),   hm = h/m,  c = drag,  u = u_fluid
+//   j = (h c)(u - v1),  j_drag += j,  w_fluid += dot(h f_ext + j, (v0 + v1)/2),  v = v1
+// (without air: v += hm F), and omega += (h/I) T. `kKicks` half kicks with the same forces
+// (2: the one that closes the previous step and the one that opens this one), then, with
+// kDrift, x += dt v; with kBuild, returns max |x - x_at_build|^2 (NaN ignored, as in
+// NeighborList::needs_rebuild).
+// Each particle sees the operations of the Vec3 expressions above in their order, so the
+// result is the same to the bit as kicking particle by particle. The per-particle factors
+// are spread to one value per component so that the arithmetic runs over the components as
+// one flat array (vectorized); the sums over components (the dot product) go back to one
+// value per particle in the Vec3 order ((x + y) + z).
+template <bool kAir, int kKicks, bool kDrift, bool kBuild>
+__attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_drift_range(
+    const KickArrays& a, double* __restrict x, const double* __restrict x0, int i0, int i1, double h, double dt) {
+  constexpr int kBlock = 256;
+  alignas(64) double f1[kBlock], f2[kBlock], f3[kBlock], f4[kBlock];
+  alignas(64) double hm3[3 * kBlock], s3[3 * kBlock], c3[3 * kBlock], hc3[3 * kBlock], hi3[3 * kBlock];
+  alignas(64) double term[3 * kBlock];
   double move2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : move2) if (n >= 512)
-  for (int i = 0; i < n; ++i) {
-    kick_one(p, i, h, air);
-    p.x[i] += dt * p.v[i];
-    if (have_build) {
-      const double d2 = norm2(p.x[i] - x_at_build[i]);
-      if (d2 > move2) move2 = d2;  // NaN ignored, as in NeighborList::needs_rebuild
+  for (int b0 = i0; b0 < i1; b0 += kBlock) {
+    const int n = std::min(i1 - b0, kBlock), m = 3 * n;
+    const int k0 = 3 * b0;
+    double* __restrict v = a.v + k0;
+    double* __restrict w = a.omega + k0;
+    const double* __restrict F = a.force + k0;
+    const double* __restrict T = a.torque + k0;
+    // The per-particle factors, then one per component.
+    for (int q = 0; q < n; ++q) {
+      f1[q] = h * a.inv_mass[b0 + q];
+      f4[q] = h * a.inv_inertia[b0 + q];
+      if (kAir) {
+        const double c = a.drag[b0 + q];
+        f2[q] = 1.0 / (1.0 + f1[q] * c);
+        f3[q] = h * c;
+      }
     }
+    for (int q = 0; q < n; ++q)
+      for (int d = 0; d < 3; ++d) {
+        hm3[3 * q + d] = f1[q];
+        hi3[3 * q + d] = f4[q];
+        if (kAir) {
+          s3[3 * q + d] = f2[q];
+          c3[3 * q + d] = a.drag[b0 + q];
+          hc3[3 * q + d] = f3[q];
+        }
+      }
+    for (int kick = 0; kick < kKicks; ++kick) {
+      if (kAir) {
+        const double* __restrict u = a.u_fluid + k0;
+        const double* __restrict fe = a.f_ext + k0;
+        double* __restrict jd = a.j_drag + k0;
+        for (int r = 0; r < m; ++r) {
+          const double v0 = v[r];
+          const double v1 = s3[r] * (v0 + hm3[r] * (F[r] + c3[r] * u[r]));
+          const double j = hc3[r] * (u[r] - v1);
+          jd[r] += j;
+          term[r] = (h * fe[r] + j) * (0.5 * (v0 + v1));
+          v[r] = v1;
+        }
+        for (int q = 0; q < n; ++q) a.w_fluid[b0 + q] += term[3 * q] + term[3 * q + 1] + term[3 * q + 2];
+      } else {
+        for (int r = 0; r < m; ++r) v[r] += hm3[r] * F[r];
+      }
+      for (int r = 0; r < m; ++r) w[r] += hi3[r] * T[r];
+    }
+    if (kDrift)
+      for (int r = 0; r < m; ++r) x[k0 + r] += dt * v[r];
+    if (kBuild)
+      for (int q = 0; q < n; ++q) {
+        const int k = k0 + 3 * q;
+        const double dx = x[k] - x0[k], dy = x[k + 1] - x0[k + 1], dz = x[k + 2] - x0[k + 2];
+        const double d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 > move2) move2 = d2;
+      }
   }
   return move2;
+}
+
+// The particles 0..n-1 (the owned ones: ghosts are refreshed from their owners), split
+// evenly between the threads.
+template <bool kAir, int kKicks, bool kDrift, bool kBuild>
+double kicks_and_drift_t(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt) {
+  const KickArrays a(p);
+  double* x = &p.x.data()->x;
+  const double* x0 = kBuild ? &x_at_build.data()->x : nullptr;
+  double move2 = 0;
+#pragma omp parallel reduction(max : move2) if (n >= 512)
+  {
+    const long nt = omp_get_num_threads(), t = omp_get_thread_num();
+    const int i0 = static_cast<int>(n * t / nt), i1 = static_cast<int>(n * (t + 1) / nt);
+    move2 = kicks_and_drift_range<kAir, kKicks, kDrift, kBuild>(a, x, x0, i0, i1, h, dt);
+  }
+  return move2;
+}
+
+template <bool kAir>
+double kicks_and_drift_air(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool close) {
+  const bool build = x_at_build.size() == p.size();
+  if (close)
+    return build ? kicks_and_drift_t<kAir, 2, true, true>(p, n, x_at_build, h, dt)
+                 : kicks_and_drift_t<kAir, 2, true, false>(p, n, x_at_build, h, dt);
+  return build ? kicks_and_drift_t<kAir, 1, true, true>(p, n, x_at_build, h, dt)
+               : kicks_and_drift_t<kAir, 1, true, false>(p, n, x_at_build, h, dt);
+}
+
+// With `close`, the half kick that ends the previous step, then (always) the half kick
+// that starts this one and the drift, in one pass; returns max |x_i - x_at_build_i|^2 for
+// the rebuild test (0 when there is no build yet).
+double kicks_and_drift(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool air,
+                       bool close) {
+  return air ? kicks_and_drift_air<true>(p, n, x_at_build, h, dt, close)
+             : kicks_and_drift_air<false>(p, n, x_at_build, h, dt, close);
 }
 
 }  // namespace
 
 void DemSolver::kick(double h) {
-  const int n = static_cast<int>(owned());
-#pragma omp parallel for schedule(static) if (n >= 512)
-  for (int i = 0; i < n; ++i) kick_one(p_, i, h, air_forces_);
+  const std::vector<Vec3> none;
+  if (air_forces_)
+    kicks_and_drift_t<true, 1, false, false>(p_, static_cast<int>(owned()), none, h, 0);
+  else
+    kicks_and_drift_t<false, 1, false, false>(p_, static_cast<int>(owned()), none, h, 0);
 }
 
 // Owned particles only: a hook removes the ghosts before (DomainExchange::drop_ghosts).
@@ -123,7 +240,12 @@ void DemSolver::rebuild_lists() {
   }
 }
 
-void DemSolver::step() {
+void DemSolver::step() { advance(1); }
+
+// advance(n) is n calls of step(), bit for bit: between two of its steps the closing half
+// kick of one and the opening half kick and drift of the next share a pass.
+void DemSolver::advance(long n) {
+  if (n <= 0) return;
   const double dt = params_.dt;
   if (!forces_valid_) {  // first step (or particles were added): forces at x^n
     frame_ = scene_.at(t_);
@@ -135,24 +257,26 @@ void DemSolver::step() {
     compute_forces();
     forces_valid_ = true;
   }
-  double move2;
-  {
-    auto scope = timers_.scope(t_kick_);
-    move2 = kick_and_drift(p_, static_cast<int>(owned()), nl_.x_at_build, 0.5 * dt, dt, air_forces_);
+  for (long k = 0; k < n; ++k) {
+    double move2;
+    {
+      auto scope = timers_.scope(t_kick_);
+      move2 = kicks_and_drift(p_, static_cast<int>(owned()), nl_.x_at_build, 0.5 * dt, dt, air_forces_, k > 0);
+    }
+    t_ += dt;
+    ++steps_;
+    frame_ = scene_.at(t_);
+    {
+      auto scope = timers_.scope(t_neigh_);
+      bool rebuild = nl_.needs_rebuild(move2, p_.size(), frame_);
+      if (exchange_) rebuild = exchange_->any(rebuild);
+      if (rebuild)
+        rebuild_lists();
+      else if (exchange_)
+        exchange_->refresh_ghosts(p_);
+    }
+    compute_forces();
   }
-  t_ += dt;
-  ++steps_;
-  frame_ = scene_.at(t_);
-  {
-    auto scope = timers_.scope(t_neigh_);
-    bool rebuild = nl_.needs_rebuild(move2, p_.size(), frame_);
-    if (exchange_) rebuild = exchange_->any(rebuild);
-    if (rebuild)
-      rebuild_lists();
-    else if (exchange_)
-      exchange_->refresh_ghosts(p_);
-  }
-  compute_forces();
   auto scope = timers_.scope(t_kick_);
   kick(0.5 * dt);
 }

@@ -105,6 +105,9 @@ class DemSolver {
   double time() const { return t_; }
   long steps() const { return steps_; }
   void step();
+  // n steps (as n calls of step(), to the bit), the kicks between two of them in one pass
+  // over the particles: for callers that look at the particles only after the n-th.
+  void advance(long n);
 
   // This process's share: its owned parcels (all of them without a DomainExchange), a pair
   // with a ghost counted on the rank of its lower id; over MPI ranks
