@@ -242,8 +242,13 @@ class Exchange {
     const geometry::Scene* scene = nullptr;
     const fluid::IbmFractions* walls = nullptr;
     std::vector<Vec3> offsets;           // the bodies' offsets when filled (static ones compared)
-    fluid::Field value;                  // the capacity, where known
-    std::vector<unsigned char> known;    // per cell of the block (index i + nx (j + ny k))
+    fluid::Field value;                  // the capacity, where known or recent
+    std::vector<unsigned char> known;    // per cell of the block (index i + nx (j + ny k)): the
+                                         // static walls' value, for any place of the moving ones
+    // The value at the placement `recent_offsets` of every body (moving ones included): the
+    // nodes a moving part reaches, kept for the next call while nothing moves (a shoe at rest).
+    std::vector<Vec3> recent_offsets;
+    std::vector<unsigned char> recent;
   };
   // The cache of radius r, emptied if stale; null when none applies (over MPI ranks, no
   // walls, or r not a parcel radius of the species).

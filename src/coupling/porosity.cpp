@@ -207,6 +207,11 @@ Exchange::CapacityCache* Exchange::capacity_cache(double r) const {
     c.scene = &scene, c.walls = walls_, c.offsets = frame_->offset;
     c.value = fluid::make_cell_field(g_);
     c.known.assign(static_cast<size_t>(g_.nx) * g_.ny * g_.nz, 0);
+    c.recent.assign(c.known.size(), 0);
+  }
+  if (!(c.recent_offsets == frame_->offset)) {  // something moved: the recent values are stale
+    c.recent_offsets = frame_->offset;
+    std::fill(c.recent.begin(), c.recent.end(), 0);
   }
   return &c;
 }
@@ -257,7 +262,9 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
   // cells' sub-cubes) and a half-diagonal more (the sampled wall fractions of those cells).
   // Where no moving part's bounds come that near, it is the static walls' value: taken
   // from the cache when known (bit for bit what evaluating it gives), else evaluated and
-  // kept. need = 2 marks a node whose capacity came from the cache.
+  // kept. Where one does, the value is taken from the cache if the last call evaluated it
+  // with every body where it is now (nothing moved since), else evaluated and kept for the
+  // next call. need = 2 marks a node whose capacity came from the cache.
   CapacityCache* cache = capacity_cache(r);
   std::vector<unsigned char> keep;  // per own cell: an evaluated capacity to be kept
   if (cache) {
@@ -289,7 +296,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
           bool reached = false;
           for (const auto& b : moving) reached = reached || b.contains(x);
           const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
-          if (!reached && cache->known[q]) {
+          if ((!reached && cache->known[q]) || cache->recent[q]) {
             cap(i, j, k) = cache->value(i, j, k);
             need(i, j, k) = 2;
             ++from_cache;
@@ -331,7 +338,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
         cap(i, j, k) = raw(i, j, k);
         ++nodes[1];
         const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
-        if (cache && keep[q]) cache->value(i, j, k) = raw(i, j, k), cache->known[q] = 1;
+        if (cache) cache->value(i, j, k) = raw(i, j, k), cache->known[q] = keep[q], cache->recent[q] = 1;
       }
   return nodes;
 }

@@ -235,38 +235,44 @@ struct PairSearch {
 // Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
 // (each owner's partners in increasing index), image, and hist: the history of the same
 // pair in the old lists, by old indices, stored under the lower of the two and flipped
-// when the owner changed. Parallel over owners, each writing its own entries.
+// when the owner changed. One search per owner: each thread collects the pairs of its
+// block of owners (the same static blocks in both loops), then copies them to their
+// places once the prefix sum gives the offsets; every entry is written by one thread.
 void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& order, const OldLists& old) {
   const int np = s.np, no = s.no;
   nl.offset.assign(np + 1, 0);
-#pragma omp parallel for schedule(static) if (np >= 512)
-  for (int i = 0; i < no; ++i) {
-    int count = 0;
-    s.neighbours(i, [&](int, int) { ++count; });
-    nl.offset[i + 1] = count;
-  }
-  std::partial_sum(nl.offset.begin(), nl.offset.end(), nl.offset.begin());
-  const int ne = nl.offset[np];
-  nl.partner.resize(ne);
-  nl.image.resize(ne);
-  nl.hist.assign(ne, contact::History{});
-#pragma omp parallel for schedule(static) if (np >= 512)
-  for (int i = 0; i < no; ++i) {
-    std::vector<std::pair<int, int>> found;
-    found.reserve(nl.offset[i + 1] - nl.offset[i]);
-    s.neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
-    std::sort(found.begin(), found.end());
-    for (int k = 0, e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
-      nl.partner[e] = found[k].first;
-      nl.image[e] = static_cast<uint8_t>(found[k].second);
-      if (!old.valid) continue;
-      const int oi = order[i], oj = order[found[k].first];
-      if (oi < oj) {
-        if (const auto* h = find_history(old.off, old.partner, old.hist, oi, oj)) nl.hist[e] = *h;
-      } else {
-        if (const auto* h = find_history(old.off, old.partner, old.hist, oj, oi)) nl.hist[e] = h->flipped();
-      }
+  std::vector<std::pair<int, int>> found;  // per thread: (partner, image code), owner after owner
+#pragma omp parallel if (np >= 512) firstprivate(found)
+  {
+#pragma omp for schedule(static)
+    for (int i = 0; i < no; ++i) {
+      const size_t first = found.size();
+      s.neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
+      std::sort(found.begin() + static_cast<long>(first), found.end());
+      nl.offset[i + 1] = static_cast<int>(found.size() - first);
     }
+#pragma omp single
+    {
+      std::partial_sum(nl.offset.begin(), nl.offset.end(), nl.offset.begin());
+      const int ne = nl.offset[np];
+      nl.partner.resize(ne);
+      nl.image.resize(ne);
+      nl.hist.assign(ne, contact::History{});
+    }  // (implicit barrier: the offsets and sizes are set for every thread)
+    size_t k = 0;
+#pragma omp for schedule(static)
+    for (int i = 0; i < no; ++i)
+      for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
+        nl.partner[e] = found[k].first;
+        nl.image[e] = static_cast<uint8_t>(found[k].second);
+        if (!old.valid) continue;
+        const int oi = order[i], oj = order[found[k].first];
+        if (oi < oj) {
+          if (const auto* h = find_history(old.off, old.partner, old.hist, oi, oj)) nl.hist[e] = *h;
+        } else {
+          if (const auto* h = find_history(old.off, old.partner, old.hist, oj, oi)) nl.hist[e] = h->flipped();
+        }
+      }
   }
 }
 
