@@ -79,7 +79,7 @@ class CoupledSolver {
 
   const coupling::VoidStats& last_void_stats() const { return void_stats_; }
   // Kernel capacities next to walls over the steps so far (a restart counts from there):
-  // nodes taken from the exchange's cache of static-wall values, nodes evaluated.
+  // nodes taken from the exchange's cache (static walls, or nothing moved), nodes evaluated.
   std::array<long, 2> capacity_nodes() const { return capacity_nodes_; }
   const coupling::Exchange& exchange() const { return ex_; }
   PhaseTimers& timers() { return timers_; }

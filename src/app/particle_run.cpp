@@ -291,8 +291,8 @@ void ParticleRun::print_report(const run::Totals& t, long inside, const std::str
     print_fluid_counters(counters_);
     const auto nodes = s_->coupled().capacity_nodes();
     if (nodes[0] + nodes[1] > 0)
-      fmt::print("kernel capacities next to walls: {} node evaluations, {:.1f} % of them from the cache of static-wall "
-                 "values\n", nodes[0] + nodes[1], 100.0 * nodes[0] / (nodes[0] + nodes[1]));
+      fmt::print("kernel capacities next to walls: {} node values, {:.1f} % of them from the cache (static walls, or no "
+                 "body moved since they were evaluated)\n", nodes[0] + nodes[1], 100.0 * nodes[0] / (nodes[0] + nodes[1]));
     if (drag_counters_.steps > 0) print_drag_counters(drag_counters_);
     t_cpl = s_->coupled().timers().total(), t_air = s_->fluid().timers().total();
   }
