@@ -198,6 +198,7 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
   for (int p : parts.moving) mb.push_back(frame.part_bounds(p));
   for (int p : parts.fixed) fb.push_back(frame.part_bounds(p));
   const double h = 0.5 * g.dx, r = 0.5 * norm(Vec3{g.dx, g.dx, g.dx});
+  const double half_diag = 0.5 * norm(Vec3{2 * h, 2 * h, 2 * h});  // as in box_fraction
   bool any = c.any;
   if (!mb.empty()) {
     Aabb reg{mb[0].lo, mb[0].hi};
@@ -232,11 +233,15 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
               const double pm = nearest_of(frame, cm, x, wm);
               const double pc = std::min(dist, pm);
               if (pm < dist || (pm == dist && wm < which)) which = wm, dist = pm;
-              candidates(parts.fixed, fb, x, r, cs, csb);
-              call = cs, callb = csb;
-              call.insert(call.end(), cm.begin(), cm.end());
-              callb.insert(callb.end(), cmb.begin(), cmb.end());
-              al = box_fraction(frame, call, callb, x, pc, h, samples, sampled);
+              if (pc >= half_diag || pc <= -half_diag) {
+                al = pc >= half_diag ? 0.0 : 1.0;  // box_fraction's shortcuts, without the candidates
+              } else {
+                candidates(parts.fixed, fb, x, r, cs, csb);
+                call = cs, callb = csb;
+                call.insert(call.end(), cm.begin(), cm.end());
+                callb.insert(callb.end(), cmb.begin(), cmb.end());
+                al = box_fraction(frame, call, callb, x, pc, h, samples, sampled);
+              }
             }
             al_out(i, j, k) = al;
             if (al > 0) any = true;
