@@ -18,6 +18,7 @@ struct CholmodFactor::Impl {
   cholmod_factor* L = nullptr;
   cholmod_dense* B = nullptr;
   long n = 0;
+  std::vector<SuiteSparse_long> p, i;  // the pattern L was analysed for (column starts, rows)
   Impl() { cholmod_l_start(&c); }
   ~Impl() {
     if (B) cholmod_l_free_dense(&B, &c);
@@ -46,11 +47,11 @@ void for_each_link(const Poisson7& op, int i, int j, int k, F&& f) {
 }
 }  // namespace
 
-CholmodFactor::CholmodFactor(const Poisson7& op) : impl_(std::make_unique<Impl>()) {
-  auto& m = *impl_;
+namespace {
+// The pinned matrix A' of op (lower triangle, stype -1; see the header), allocated in m.c.
+cholmod_sparse* assemble(const Poisson7& op, cholmod_common& cc) {
   const auto& g = op.grid();
   const long n = op.n();
-  m.n = n;
   // Pin the first cell of every floating component.
   std::vector<double> pin(n, 0.0);
   std::vector<char> seen(op.floating_components(), 0);
@@ -61,7 +62,7 @@ CholmodFactor::CholmodFactor(const Poisson7& op) : impl_(std::make_unique<Impl>(
       pin[c] = op.diag()[c] > 0 ? op.diag()[c] : 1.0;
     }
   }
-  cholmod_sparse* A = cholmod_l_allocate_sparse(n, n, 4 * n, 1, 1, -1, CHOLMOD_REAL, &m.c);
+  cholmod_sparse* A = cholmod_l_allocate_sparse(n, n, 4 * n, 1, 1, -1, CHOLMOD_REAL, &cc);
   if (!A) throw Error("pressure: CHOLMOD could not allocate the matrix");
   auto* Ap = static_cast<SuiteSparse_long*>(A->p);
   auto* Ai = static_cast<SuiteSparse_long*>(A->i);
@@ -90,11 +91,36 @@ CholmodFactor::CholmodFactor(const Poisson7& op) : impl_(std::make_unique<Impl>(
         }
       }
   Ap[n] = nnz;
-  m.L = cholmod_l_analyze(A, &m.c);
+  return A;
+}
+}  // namespace
+
+CholmodFactor::CholmodFactor(const Poisson7& op) : impl_(std::make_unique<Impl>()) { refactor(op); }
+
+bool CholmodFactor::refactor(const Poisson7& op) {
+  auto& m = *impl_;
+  const long n = op.n();
+  cholmod_sparse* A = assemble(op, m.c);
+  const auto* Ap = static_cast<const SuiteSparse_long*>(A->p);
+  const auto* Ai = static_cast<const SuiteSparse_long*>(A->i);
+  const bool same = m.L && m.n == n && std::equal(m.p.begin(), m.p.end(), Ap, Ap + n + 1) &&
+                    std::equal(m.i.begin(), m.i.end(), Ai, Ai + Ap[n]);
+  if (!same) {
+    if (m.L) cholmod_l_free_factor(&m.L, &m.c);
+    if (m.B) cholmod_l_free_dense(&m.B, &m.c);
+    m.n = n;
+    m.p.assign(Ap, Ap + n + 1);
+    m.i.assign(Ai, Ai + Ap[n]);
+    m.L = cholmod_l_analyze(A, &m.c);
+  }
   const bool ok = m.L && cholmod_l_factorize(A, m.L, &m.c) && m.c.status == CHOLMOD_OK;
   cholmod_l_free_sparse(&A, &m.c);
-  if (!ok) throw Error("pressure: CHOLMOD factorisation failed (status " + std::to_string(m.c.status) + ")");
-  m.B = cholmod_l_allocate_dense(n, 1, n, CHOLMOD_REAL, &m.c);
+  if (!ok) {
+    if (m.L) cholmod_l_free_factor(&m.L, &m.c);  // analysed anew next time
+    throw Error("pressure: CHOLMOD factorisation failed (status " + std::to_string(m.c.status) + ")");
+  }
+  if (!m.B) m.B = cholmod_l_allocate_dense(n, 1, n, CHOLMOD_REAL, &m.c);
+  return same;
 }
 
 CholmodFactor::~CholmodFactor() = default;

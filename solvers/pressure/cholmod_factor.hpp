@@ -16,6 +16,13 @@ namespace cgdem::pressure {
 class CholmodFactor {
  public:
   explicit CholmodFactor(const Poisson7& op);  // assemble, analyse, factorise (throws on failure)
+  // The factor of another operator on the same grid. When the matrix has the pattern of the
+  // one last analysed (the same nonzeros, as when only the coefficients' values changed),
+  // the analysis (fill-reducing order, symbolic factor) is kept and only the numbers are
+  // factorised again: the same factor, to the bit, as a new CholmodFactor(op) gives, since
+  // the analysis depends on the pattern alone. Otherwise it analyses anew. Returns whether
+  // the analysis was kept.
+  bool refactor(const Poisson7& op);
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;

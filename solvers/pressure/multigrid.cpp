@@ -84,8 +84,10 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
                     coarsen_faces(grids_[l - 1], grids_[l], f.az(), 2));
     lv_[l].op = lv_[l].own.get();
   }
-  coarse_.reset();
-  coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
+  if (coarse_)
+    coarse_->refactor(*lv_.back().op);  // keeps the analysis while the pattern is the same
+  else
+    coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
   if (precision_ == Precision::Single) {
     scale_ = stencil32_scale(op);
     for (auto& L : lv_) L.s32.set(*L.op, scale_, omega_);
