@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/error.hpp"
 
@@ -57,22 +58,23 @@ struct KickArrays {
   const double* __restrict inv_mass;
   const double* __restrict inv_inertia;
   explicit KickArrays(Particles& p)
-      : v(&p.v.data()->x),
-        omega(&p.omega.data()->x),
-        force(&p.force.data()->x),
-        torque(&p.torque.data()->x),
-        f_ext(&p.f_ext.data()->x),
-        u_fluid(&p.u_fluid.data()->x),
-        j_drag(&p.j_drag.data()->x),
+      : v(reinterpret_cast<double*>(p.v.data())),
+        omega(reinterpret_cast<double*>(p.omega.data())),
+        force(reinterpret_cast<double*>(p.force.data())),
+        torque(reinterpret_cast<double*>(p.torque.data())),
+        f_ext(reinterpret_cast<double*>(p.f_ext.data())),
+        u_fluid(reinterpret_cast<double*>(p.u_fluid.data())),
+        j_drag(reinterpret_cast<double*>(p.j_drag.data())),
         w_fluid(p.w_fluid.data()),
         drag(p.drag.data()),
         inv_mass(p.inv_mass.data()),
         inv_inertia(p.inv_inertia.data()) {}
 };
-static_assert(sizeof(Vec3) == 3 * sizeof(double), "KickArrays reads a Vec3 array as doubles");
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && std::is_standard_layout_v<Vec3>,
+              "KickArrays reads a Vec3 array as doubles");
 
 // Half kicks (see the header) and the drift of the particles i0..i1-1, in blocks of kBlock
-// particles whose data stay in the first-level cache. Per half kick:
+// particles whose data and factors stay in cache between the loops. Per half kick:
 //   v1 = (1/(1 + hm c)) (v0 + hm (F + c u)),   hm = h/m,  c = drag,  u = u_fluid
 //   j = (h c)(u - v1),  j_drag += j,  w_fluid += dot(h f_ext + j, (v0 + v1)/2),  v = v1
 // (without air: v += hm F), and omega += (h/I) T. `kKicks` half kicks with the same forces
@@ -156,8 +158,8 @@ __attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_dri
 template <bool kAir, int kKicks, bool kDrift, bool kBuild>
 double kicks_and_drift_t(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt) {
   const KickArrays a(p);
-  double* x = &p.x.data()->x;
-  const double* x0 = kBuild ? &x_at_build.data()->x : nullptr;
+  double* x = reinterpret_cast<double*>(p.x.data());
+  const double* x0 = kBuild ? reinterpret_cast<const double*>(x_at_build.data()) : nullptr;
   double move2 = 0;
 #pragma omp parallel reduction(max : move2) if (n >= 512)
   {
