@@ -90,7 +90,7 @@ template <bool kAir, int kKicks, bool kDrift, bool kBuild>
 __attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_drift_range(
     const KickArrays& a, double* __restrict x, const double* __restrict x0, int i0, int i1, double h, double dt) {
   constexpr int kBlock = 256;
-  alignas(64) double f1[kBlock], f2[kBlock], f3[kBlock], f4[kBlock];
+  alignas(64) double hm1[kBlock], s1[kBlock], hc1[kBlock], hi1[kBlock];  // per particle
   alignas(64) double hm3[3 * kBlock], s3[3 * kBlock], c3[3 * kBlock], hc3[3 * kBlock], hi3[3 * kBlock];
   alignas(64) double term[3 * kBlock];
   double move2 = 0;
@@ -103,22 +103,22 @@ __attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_dri
     const double* __restrict T = a.torque + k0;
     // The per-particle factors, then one per component.
     for (int q = 0; q < n; ++q) {
-      f1[q] = h * a.inv_mass[b0 + q];
-      f4[q] = h * a.inv_inertia[b0 + q];
+      hm1[q] = h * a.inv_mass[b0 + q];
+      hi1[q] = h * a.inv_inertia[b0 + q];
       if (kAir) {
         const double c = a.drag[b0 + q];
-        f2[q] = 1.0 / (1.0 + f1[q] * c);
-        f3[q] = h * c;
+        s1[q] = 1.0 / (1.0 + hm1[q] * c);
+        hc1[q] = h * c;
       }
     }
     for (int q = 0; q < n; ++q)
       for (int d = 0; d < 3; ++d) {
-        hm3[3 * q + d] = f1[q];
-        hi3[3 * q + d] = f4[q];
+        hm3[3 * q + d] = hm1[q];
+        hi3[3 * q + d] = hi1[q];
         if (kAir) {
-          s3[3 * q + d] = f2[q];
+          s3[3 * q + d] = s1[q];
           c3[3 * q + d] = a.drag[b0 + q];
-          hc3[3 * q + d] = f3[q];
+          hc3[3 * q + d] = hc1[q];
         }
       }
     for (int kick = 0; kick < kKicks; ++kick) {

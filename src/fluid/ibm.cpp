@@ -97,13 +97,20 @@ double sampled_fraction(const Scene::Frame& f, const std::vector<int>& parts, co
   return static_cast<double>(inside) / (n * n * n);
 }
 
-// Box fraction with phi at the centre given (phi over `parts`): the exact 0 / 1 shortcuts of
-// solid_fraction, else the samples.
-double box_fraction(const Scene::Frame& f, const std::vector<int>& parts, const std::vector<Aabb>& bounds,
-                    const Vec3& x, double pc, double h, int n, long& sampled) {
+// The fraction of a box of half-width h whose centre lies at signed distance pc from the
+// walls, when no sample is needed (the exact 0 / 1 shortcuts of solid_fraction: the box lies
+// wholly outside or inside); -1 when it must be sampled.
+double sure_fraction(double pc, double h) {
   const double half_diag = 0.5 * norm(Vec3{2 * h, 2 * h, 2 * h});
   if (pc >= half_diag) return 0.0;
   if (pc <= -half_diag) return 1.0;
+  return -1.0;
+}
+
+// Box fraction with phi at the centre given (phi over `parts`): sure_fraction, else the samples.
+double box_fraction(const Scene::Frame& f, const std::vector<int>& parts, const std::vector<Aabb>& bounds,
+                    const Vec3& x, double pc, double h, int n, long& sampled) {
+  if (const double sure = sure_fraction(pc, h); sure >= 0) return sure;
   ++sampled;
   return sampled_fraction(f, parts, bounds, x, h, n);
 }
@@ -198,7 +205,6 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
   for (int p : parts.moving) mb.push_back(frame.part_bounds(p));
   for (int p : parts.fixed) fb.push_back(frame.part_bounds(p));
   const double h = 0.5 * g.dx, r = 0.5 * norm(Vec3{g.dx, g.dx, g.dx});
-  const double half_diag = 0.5 * norm(Vec3{2 * h, 2 * h, 2 * h});  // as in box_fraction
   bool any = c.any;
   if (!mb.empty()) {
     Aabb reg{mb[0].lo, mb[0].hi};
@@ -233,8 +239,8 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
               const double pm = nearest_of(frame, cm, x, wm);
               const double pc = std::min(dist, pm);
               if (pm < dist || (pm == dist && wm < which)) which = wm, dist = pm;
-              if (pc >= half_diag || pc <= -half_diag) {
-                al = pc >= half_diag ? 0.0 : 1.0;  // box_fraction's shortcuts, without the candidates
+              if (const double sure = sure_fraction(pc, h); sure >= 0) {
+                al = sure;  // the static parts near it are gathered only to sample
               } else {
                 candidates(parts.fixed, fb, x, r, cs, csb);
                 call = cs, callb = csb;
