@@ -17,6 +17,9 @@ struct DemBenchArgs {
   // The contact law (a row of contact/laws.hpp) with its default material; the linear
   // law's is the paper's Table 1.
   std::string law = "linear";
+  // The box's inner lengths along x and y [m] (walls at 0 and there; floor at z = 0): the
+  // shared beds' 0.010 x 0.006 m, or that of a bed tiled from them (bench/dem/tile_bed.py).
+  double box_x = 0.010, box_y = 0.006;
 };
 int run_dem_bench(const DemBenchArgs& args);
 

@@ -1,5 +1,6 @@
 // Dense-bed DEM benchmark (shared/bench/dem_bed/README.md): a settled bed in a box with
-// frictional planar walls at x = 0, 0.010 m, y = 0, 0.006 m and a floor at z = 0; rho 1500,
+// frictional planar walls at x = 0, 0.010 m (--box-x), y = 0, 0.006 m (--box-y) and a
+// floor at z = 0; rho 1500,
 // k 50 N/m, e 0.9, mu 0.3, l = 1, dt 1e-6 s, gravity 9.81 m/s^2. The figure is
 // particles x steps / wall seconds of the stepping loop (reading the bed not counted).
 #include <fmt/format.h>
@@ -52,11 +53,16 @@ int run_dem_bench(const DemBenchArgs& args) {
   const double d = bed.d.at(0);
   for (double di : bed.d)
     if (di != d) throw Error("bench dem: the bed must be monodisperse");
+  const double lx = args.box_x, ly = args.box_y;
+  for (size_t i = 0; i < bed.size(); ++i)
+    if (!(bed.x[i].x >= 0 && bed.x[i].x <= lx && bed.x[i].y >= 0 && bed.x[i].y <= ly && bed.x[i].z >= 0))
+      throw Error(fmt::format("bench dem: particle {} of the bed lies outside the box {} x {} m (see --box-x, "
+                              "--box-y)", i, lx, ly));
 
   // The box's walls, as planes (the stripped reference takes them as they are) and as the
   // engine's scene parts, in the same order.
-  const std::vector<Plane> planes{{{0, 0, 0}, {1, 0, 0}},     {{0.010, 0, 0}, {-1, 0, 0}}, {{0, 0, 0}, {0, 1, 0}},
-                                  {{0, 0.006, 0}, {0, -1, 0}}, {{0, 0, 0}, {0, 0, 1}}};
+  const std::vector<Plane> planes{{{0, 0, 0}, {1, 0, 0}},     {{lx, 0, 0}, {-1, 0, 0}}, {{0, 0, 0}, {0, 1, 0}},
+                                  {{0, ly, 0}, {0, -1, 0}}, {{0, 0, 0}, {0, 0, 1}}};
   const char* names[] = {"x0", "x1", "y0", "y1", "floor"};
   geometry::Scene scene;
   int box = scene.add_body("box", geometry::Motion{});
@@ -68,7 +74,7 @@ int run_dem_bench(const DemBenchArgs& args) {
   p.dt = 1e-6;
   p.gravity = {0, 0, -9.81};
   p.skin = 0.1 * d;  // as the LAMMPS script: neighbor 0.1 d
-  p.domain = {{-0.01, -0.01, -0.01}, {0.02, 0.016, 1.0}};
+  p.domain = {{-0.01, -0.01, -0.01}, {lx + 0.01, ly + 0.01, 1.0}};
   DemSolver dem({s}, m, p, scene);
   for (size_t i = 0; i < bed.size(); ++i) dem.particles().add(static_cast<int64_t>(i), 0, s, bed.x[i]);
 
