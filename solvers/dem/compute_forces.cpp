@@ -89,6 +89,7 @@ class ForcePass {
       : p_(p), nl_(nl), frame_(frame), table_(table), dt_(params.dt), g_(params.gravity),
         n_(static_cast<int>(p.size())), n_owned_(static_cast<int>(nl.owned(p))), nblocks_((n_ + kBlock - 1) / kBlock),
         periodic_(nl.periodic.any()),
+        uniform_radius_(std::all_of(p.radius.begin(), p.radius.end(), [&p](double r) { return r == p.radius[0]; })),
         arrays_{p.x.data(), p.v.data(), p.omega.data(), p.radius.data(), nl.partner.data()} {}
 
   void run() {
@@ -163,7 +164,12 @@ class ForcePass {
     const double* shift_k[3] = {zero, zero, zero};
     if (periodic_)
       for (int k = 0; k < 3; ++k) shift_k[k] = buf.shift[k].data();
-    forces::screen_entries(arrays_, bl.e0, bl.e1, buf.owner.data(), shift_k, nl_.live.data(), buf.active.data());
+    if (uniform_radius_)
+      forces::screen_entries<true>(arrays_, bl.e0, bl.e1, buf.owner.data(), shift_k, nl_.live.data(),
+                                   buf.active.data(), p_.radius[0] + p_.radius[0]);
+    else
+      forces::screen_entries<false>(arrays_, bl.e0, bl.e1, buf.owner.data(), shift_k, nl_.live.data(),
+                                    buf.active.data(), 0.0);
     const int ne = bl.entries();
     int na = 0;
     for (int e = 0; e < ne; ++e) {
@@ -314,6 +320,7 @@ class ForcePass {
   const Vec3 g_;
   const int n_, n_owned_, nblocks_;
   const bool periodic_;
+  const bool uniform_radius_;  // every particle (ghosts too) has the same radius
   const PairArrays arrays_;
 };
 

@@ -113,10 +113,12 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
 // test as the kernel's, same operations) or with a live history (in contact at the last
 // evaluation; the kernel then ends the contact). For every other entry the kernel would
 // write zero shares and leave the (empty) history alone, so skipping it changes nothing.
-// Independent of the law.
+// Independent of the law. With Uniform, every particle's radius is r and rsum_uniform is
+// r + r, the sum the loop would form: the radii need not be gathered.
+template <bool Uniform>
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) inline void screen_entries(
     const PairArrays& a, int e0, int e1, const int* __restrict owner, const double* const* shift,
-    const uint8_t* __restrict live, int* __restrict active) {
+    const uint8_t* __restrict live, int* __restrict active, double rsum_uniform) {
   const Vec3* __restrict x = a.x;
   const double* __restrict radius = a.radius;
   const int* __restrict partner = a.partner;
@@ -127,7 +129,7 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) in
   for (int e = e0; e < e1; ++e) {
     const int i = owner[e - e0], j = partner[e];
     const Vec3 d = load(x[i]) - (load(x[j]) + Vec3{sx[e - e0], sy[e - e0], sz[e - e0]});
-    const double rsum = radius[i] + radius[j];
+    const double rsum = Uniform ? rsum_uniform : radius[i] + radius[j];
     active[e - e0] = (norm2(d) < rsum * rsum) | (live[e] != 0);
   }
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <map>
 #include <random>
 
 #include "dem_test_util.hpp"
@@ -103,6 +104,58 @@ TEST(Conservation, OneAndTwoThreadsBitIdentical) {
     EXPECT_EQ(ea.dissipated_friction, eb.dissipated_friction);
   }
   omp_set_num_threads(omp_get_num_procs());
+}
+
+// The force pass skips gathering the radii when every parcel has the same one (the
+// screening and the one-species kernel take r + r from a register). That must be the
+// gathered path's bits: the cluster stepped alone (every parcel of one radius) against the
+// same cluster beside one parcel of a second species, of 100 instead of 125 um, far above
+// it (the radii differ: the screening gathers them and the kernel is the several-species
+// one with its parameter table). The far parcel touches nothing and sorts last, and it is
+// the smaller one, so the cell size and the skin (set by the largest diameter) stay: the
+// cluster's sums keep their order. The test fails when the shortcut's sum of radii is too
+// small (1 % smaller: 511 of 512 parcels differ); a larger one only lets through entries
+// that the kernel then finds apart, which changes nothing.
+TEST(Conservation, UniformRadiusShortcutIsTheGatheredPath) {
+  auto run = [](bool far_parcel) {
+    auto dem = cluster(1e-7, 0.9, 0.3, 1.0);
+    if (!far_parcel) return dem;
+    Species small = test::powder(1.0, 100e-6);
+    small.name = "small";
+    MaterialParams m;  // as cluster()'s
+    m.restitution = 0.9;
+    m.friction = 0.3;
+    auto two = std::make_unique<DemSolver>(std::vector<Species>{dem->species()[0], small}, m, test::no_gravity(1e-7),
+                                           geometry::Scene{});
+    const Particles& p = dem->particles();
+    for (size_t i = 0; i < p.size(); ++i)
+      two->particles().add(p.id[i], 0, two->species()[0], p.x[i], p.v[i], p.omega[i]);
+    two->particles().add(100000, 1, two->species()[1], {0, 0, 0.05}, {}, {});
+    return two;
+  };
+  auto a = run(false), b = run(true);
+  long contacts_seen = 0;
+  for (int s = 0; s < 2000; ++s) {
+    a->step(), b->step();
+    if (s % 100 == 0) contacts_seen += a->contact_count();
+  }
+  std::map<int64_t, size_t> in_b;
+  for (size_t k = 0; k < b->particles().size(); ++k) in_b[b->particles().id[k]] = k;
+  const Particles &pa = a->particles(), &pb = b->particles();
+  size_t differ = 0;
+  for (size_t i = 0; i < pa.size(); ++i) {
+    const size_t k = in_b.at(pa.id[i]);
+    if (!(pa.x[i] == pb.x[k]) || !(pa.v[i] == pb.v[k]) || !(pa.omega[i] == pb.omega[k])) ++differ;
+  }
+  const EnergyBudget ea = a->energy(), eb = b->energy();
+  std::printf("[ uniform radius ] parcels differing between the shortcut and the gathered path: %zu of %zu after "
+              "2000 steps (%ld contacts sampled); dissipated %.17g vs %.17g J\n",
+              differ, pa.size(), contacts_seen, ea.dissipated_damping, eb.dissipated_damping);
+  EXPECT_EQ(b->particles().size(), pa.size() + 1);
+  EXPECT_GT(contacts_seen, 100);
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(ea.dissipated_damping, eb.dissipated_damping);
+  EXPECT_EQ(ea.dissipated_friction, eb.dissipated_friction);
 }
 
 // The cluster with air forces on every parcel: a drag coefficient, an air velocity and an
