@@ -1,8 +1,8 @@
 // Dense-bed DEM benchmark (shared/bench/dem_bed/README.md): a settled bed in a box with
 // frictional planar walls at x = 0, 0.010 m (--box-x), y = 0, 0.006 m (--box-y) and a
-// floor at z = 0; rho 1500,
-// k 50 N/m, e 0.9, mu 0.3, l = 1, dt 1e-6 s, gravity 9.81 m/s^2. The figure is
-// particles x steps / wall seconds of the stepping loop (reading the bed not counted).
+// floor at z = 0; rho 1500, k 50 N/m, e 0.9, mu 0.3, l = 1, dt 1e-6 s, gravity 9.81 m/s^2.
+// The figure is particles x steps / wall seconds of the stepping loop (reading the bed not
+// counted).
 #include <fmt/format.h>
 #include <omp.h>
 
