@@ -1,4 +1,7 @@
 // Single-precision 7-point operator for the multigrid V-cycle; see stencil32.hpp.
+// No floating-point contraction: the AVX2 / AVX-512 clones below would otherwise fuse
+// multiply-adds, and every build must compute the baseline's bits.
+#pragma GCC optimize("fp-contract=off")
 #include "solvers/pressure/stencil32.hpp"
 
 #include <omp.h>
@@ -43,8 +46,9 @@ namespace {
 // row (1 <= i <= nx - 2), written without branches so that it vectorises (stride 2), in the
 // summation order of Poisson7::gs_row; id = omega/D (0 where D = 0: that cell is set to keep x),
 // keep = 1 - omega (0: the plain update, which does not read x_c).
-// Compiled for AVX2 and the baseline; the arithmetic is the same IEEE float either way.
-__attribute__((target_clones("avx2", "default"))) void gs_interior(
+// Compiled for AVX-512, AVX2 and the baseline; the arithmetic is the same IEEE float either way
+// (contraction is off for the whole file, above).
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void gs_interior(
     int i0, int nx, const float* __restrict br, const float* __restrict id, const float* __restrict wxr,
     const float* __restrict ws, const float* __restrict wn, const float* __restrict wb, const float* __restrict wt,
     const float* xs, const float* xn, const float* xb, const float* xt, float* xr, float keep) {
