@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 namespace cgdem::fluid {
@@ -75,18 +76,19 @@ double sampled_fraction(const Scene::Frame& f, const std::vector<int>& parts, co
     any_in[boxes] = m[0] && m[1] && m[2];
     ++boxes;
   }
+  // Row (j, k) of samples: bit i of `row` set when sample (i, j, k) is in a box-shaped part,
+  // the union of those parts' x masks whose y and z masks hold j and k. Counted whole; the
+  // other samples of the row are tested against the other parts one by one.
   int inside = 0;
   for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j < n; ++j) {
+      unsigned row = 0;
+      for (int b = 0; b < boxes; ++b)
+        if (any_in[b] && ((mask[b][1] >> j) & (mask[b][2] >> k) & 1u)) row |= mask[b][0];
+      inside += std::popcount(row);
+      if (!others) continue;
       for (int i = 0; i < n; ++i) {
-        bool in = false;
-        for (int b = 0; b < boxes && !in; ++b)
-          in = any_in[b] && ((mask[b][0] >> i) & (mask[b][1] >> j) & (mask[b][2] >> k) & 1u);
-        if (in) {
-          ++inside;
-          continue;
-        }
-        if (!others) continue;
+        if ((row >> i) & 1u) continue;
         const Vec3 s{coord[0][i], coord[1][j], coord[2][k]};
         for (size_t q = 0; q < parts.size(); ++q)
           if (!(q < kMaxSep && separable[q]) && bounds[q].contains(s) && f.part_distance(parts[q], s) < 0) {
@@ -94,6 +96,7 @@ double sampled_fraction(const Scene::Frame& f, const std::vector<int>& parts, co
             break;
           }
       }
+    }
   return static_cast<double>(inside) / (n * n * n);
 }
 
