@@ -63,20 +63,28 @@ std::vector<unsigned char> Exchange::near_walls(int reach) const {
   const fluid::Field& al = walls_->alpha_cell;  // its layout is cell_layout_'s: index = padded offset
   for (size_t q = 0; q < total; ++q) m[q] = al.data()[q] > 0;
   const std::array<long, 3> st{1, e[0], static_cast<long>(e[0]) * e[1]};
-  for (int d = 0; d < 3; ++d) {  // separable dilation, one axis at a time (each t from m alone)
+  // Separable dilation, one axis at a time (each t from m alone): a row of t is the OR of
+  // the rows of m shifted by -reach..reach along the axis (those that exist), in whole-row
+  // loops that vectorize.
+  for (int d = 0; d < 3; ++d) {
 #pragma omp parallel for schedule(static) if (static_cast<long>(total) > fluid::kOmpMinWork)
     for (int k = 0; k < e[2]; ++k)
-      for (int j = 0; j < e[1]; ++j)
-        for (int i = 0; i < e[0]; ++i) {
-          const std::array<int, 3> q{i, j, k};
-          const long o = i + st[1] * j + st[2] * k;
-          unsigned char v = 0;
-          for (int s = -reach; s <= reach && !v; ++s) {
-            const int c = q[d] + s;
-            if (c >= 0 && c < e[d]) v = m[o + s * st[d]];
+      for (int j = 0; j < e[1]; ++j) {
+        const long o = st[1] * j + st[2] * k;
+        unsigned char* tr = t.data() + o;
+        const unsigned char* mr = m.data() + o;
+        std::fill(tr, tr + e[0], static_cast<unsigned char>(0));
+        const int q = d == 0 ? 0 : (d == 1 ? j : k);
+        for (int s = -reach; s <= reach; ++s) {
+          if (d == 0) {
+            const int lo = std::max(0, -s), hi = std::min(e[0], e[0] - s);
+            for (int i = lo; i < hi; ++i) tr[i] |= mr[i + s];
+          } else if (q + s >= 0 && q + s < e[d]) {
+            const unsigned char* src = mr + s * st[d];
+            for (int i = 0; i < e[0]; ++i) tr[i] |= src[i];
           }
-          t[o] = v;
         }
+      }
     m.swap(t);
   }
   return m;
