@@ -176,9 +176,10 @@ OldLists take_lists(NeighborList& nl, int np) {
   return o;
 }
 
-// The 27 cells around owned particle i in a fixed order: visit(j, image code) for every
-// partner j within reach (r_i + r_j + skin), owned partners of higher index first in cell
-// order, then the ghosts of each cell (all above i). Ghosts own no entries.
+// The 27 cells around owned particle i: visit(j, image code) for every partner j within
+// reach (r_i + r_j + skin), owned partners of higher index and the ghosts (all above i).
+// Ghosts own no entries. The order of the visits is not the lists' order: find_pairs sorts
+// each owner's pairs.
 struct PairSearch {
   const Particles& p;
   const CellGrid& g;
@@ -191,17 +192,30 @@ struct PairSearch {
     const Vec3& x0 = p.x[i];
     int c[3];
     g.coords(x0, c);
+    // A row of up to three cells along x that needs no periodic image holds consecutive
+    // cell indices, so its owned particles are one range of the sorted order.
+    const bool x_unwrapped = !nl.periodic.axis[0] || (c[0] >= 1 && c[0] <= g.n[0] - 2);
+    const int xa = std::max(c[0] - 1, 0), xb = std::min(c[0] + 1, g.n[0] - 1);
     for (int dz = -1; dz <= 1; ++dz) {
       int cz = c[2] + dz, sz = 0;
       if (!wrap(2, cz, sz)) continue;
       for (int dy = -1; dy <= 1; ++dy) {
         int cy = c[1] + dy, sy = 0;
         if (!wrap(1, cy, sy)) continue;
+        if (x_unwrapped) {
+          const int code = 1 + 3 * (sy + 1) + 9 * (sz + 1);
+          owned(i, x0, cells.start[g.index(xa, cy, cz)], cells.start[g.index(xb, cy, cz) + 1], code, visit);
+          if (no < np)
+            for (int cx = xa; cx <= xb; ++cx) ghosts(i, x0, g.index(cx, cy, cz), code, visit);
+          continue;
+        }
         for (int dx = -1; dx <= 1; ++dx) {
           int cx = c[0] + dx, sx = 0;
           if (!wrap(0, cx, sx)) continue;
           const int code = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
-          cell(i, x0, g.index(cx, cy, cz), code, visit);
+          const long cc = g.index(cx, cy, cz);
+          owned(i, x0, cells.start[cc], cells.start[cc + 1], code, visit);
+          if (no < np) ghosts(i, x0, cc, code, visit);
         }
       }
     }
@@ -217,18 +231,22 @@ struct PairSearch {
     c -= s * g.n[a];
     return true;
   }
+  // The owned particles ja .. jb - 1 of the sorted order, those above i.
   template <class Visit>
-  void cell(int i, const Vec3& x0, long cc, int code, Visit& visit) const {
-    for (int j = std::max(cells.start[cc], i + 1); j < cells.start[cc + 1]; ++j) {
+  void owned(int i, const Vec3& x0, int ja, int jb, int code, Visit& visit) const {
+    for (int j = std::max(ja, i + 1); j < jb; ++j) {
       const double reach = p.radius[i] + p.radius[j] + nl.skin;
       if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
     }
-    if (no < np)
-      for (int k = cells.ghost_start[cc]; k < cells.ghost_start[cc + 1]; ++k) {
-        const int j = cells.ghost_in[k];
-        const double reach = p.radius[i] + p.radius[j] + nl.skin;
-        if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
-      }
+  }
+  // The ghosts in cell cc.
+  template <class Visit>
+  void ghosts(int i, const Vec3& x0, long cc, int code, Visit& visit) const {
+    for (int k = cells.ghost_start[cc]; k < cells.ghost_start[cc + 1]; ++k) {
+      const int j = cells.ghost_in[k];
+      const double reach = p.radius[i] + p.radius[j] + nl.skin;
+      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+    }
   }
 };
 
