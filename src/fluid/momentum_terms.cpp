@@ -1,10 +1,15 @@
+// No floating-point contraction: the AVX2 and AVX-512 builds of the sweep (which have FMA)
+// compute the same bits as the baseline one.
+#pragma GCC optimize("fp-contract=off")
 #include "fluid/momentum_terms.hpp"
 
 #include <omp.h>
 
+#include <bit>
 #include <cmath>
-#include <type_traits>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cgdem::fluid {
@@ -16,70 +21,192 @@ struct View {
   const double* o;
   long sy, sz;
   explicit View(const Field& f) : o(f.data() + f.index(0, 0, 0)), sy(f.stride(1)), sz(f.stride(2)) {}
-  double operator()(long i, long j, long k) const { return o[i + sy * j + sz * k]; }
   long step(int e) const { return e == 0 ? 1 : (e == 1 ? sy : sz); }
   long at(long i, long j, long k) const { return i + sy * j + sz * k; }
+  // Address of element (i, j, k).
+  const double* ptr(long i, long j, long k) const { return o + at(i, j, k); }
 };
 
+// c ? x : y with both x and y evaluated, as a blend of their bits under a mask of c: exactly
+// x or y. Written as ?:, GCC makes a branch of it, moves the work of each side into its
+// branch and then cannot take it out again (an FP operation may trap), and the loop does
+// not vectorize ("control flow in loop").
+inline double select(bool c, double x, double y) {
+  const uint64_t m = -static_cast<uint64_t>(c);
+  return std::bit_cast<double>((std::bit_cast<uint64_t>(x) & m) | (std::bit_cast<uint64_t>(y) & ~m));
+}
+
+// std::fmin(x, y) as the C library of this platform computes it for quiet operands (glibc,
+// x86-64: minsd when ordered, x < y ? x : y; otherwise the operand that is not NaN, x when
+// both are), written as a select: a loop of it vectorizes, where std::fmin is a call. The
+// operands here are magnitudes, never -0, so equal operands are the same bits.
+inline double fmin_select(double x, double y) { return select((x < y) | (y != y), x, y); }
+
+// The limiter psi(a, b). The TVD ones evaluate their formula for every element and then
+// select it or 0 (where a b <= 0): the value a branch would give, with no branch in the
+// loops that call them.
 template <Advection S>
 inline double limited_slope(double a, double b) {
   if constexpr (S == Advection::Upwind) return 0.0;
   if constexpr (S == Advection::Central) return b;
-  if constexpr (S == Advection::VanLeer) return a * b > 0 ? 2 * a * b / (a + b) : 0.0;
+  if constexpr (S == Advection::VanLeer) {
+    const double r = 2 * a * b / (a + b);
+    return select(a * b > 0, r, 0.0);
+  }
   if constexpr (S == Advection::MC) {
-    if (a * b <= 0) return 0.0;
-    return std::copysign(std::fmin(std::fmin(2 * std::fabs(a), 0.5 * std::fabs(a + b)), 2 * std::fabs(b)), b);
+    const double r =
+        std::copysign(fmin_select(fmin_select(2 * std::fabs(a), 0.5 * std::fabs(a + b)), 2 * std::fabs(b)), b);
+    return select(a * b <= 0, 0.0, r);
   }
   return 0.0;
 }
 
-// The two momentum fluxes through the upper e-side of the control volume of a d-face.
+// The two momentum fluxes through the upper e-side of the control volume of a d-face, for a
+// row of n consecutive faces (i .. i+n-1, j, k) of component D at a time. Each row function
+// is a plain loop over the row with no branch (upwind side, limiter and e == D resolved by
+// selects and template arguments), so that it vectorizes; element m is computed with the
+// same operations, in the same order, as the formula for that single face.
 struct Kernel {
-  int d;
   double rho, mu, inv_dx;
   View ud, ec;
   std::array<View, 3> v, E;
-  bool advect, visc;
 
-  // Advective flux  M_e q_e  at the upper e-side of face (i, j, k) (component d = D).
+  // Advective flux  M_e q_e  at the upper e-sides of the row. Reads eps_e u_e at the two
+  // e-faces above each face (the mass flux M_e) and u_D at the four faces idx - e .. idx + 2e
+  // (both reconstructions q, one from each side); writes out[0 .. n).
   template <Advection S, int D, int e>
-  double adv(long i, long j, long k) const {
-    constexpr int d = D;
+  [[gnu::always_inline]] void adv_row(long i, long j, long k, long n, double* __restrict out) const {
     const View &ve = v[e], &epe = E[e];
-    const long a = ve.at(i, j, k) + ve.step(e), b = a - ve.step(d);
-    const double mass = 0.5 * rho * (epe.o[a] * ve.o[a] + epe.o[b] * ve.o[b]);
-    const long c = ud.at(i, j, k), s = ud.step(e);
-    const double um = ud.o[c - s], u0 = ud.o[c], u1 = ud.o[c + s], u2 = ud.o[c + 2 * s];
-    const double q = mass >= 0 ? u0 + 0.5 * limited_slope<S>(u0 - um, u1 - u0) : u1 + 0.5 * limited_slope<S>(u1 - u2, u0 - u1);
-    return mass * q;
+    const long a = ve.at(i, j, k) + ve.step(e), b = a - ve.step(D);
+    const double *va = ve.o + a, *vb = ve.o + b, *ea = epe.o + a, *eb = epe.o + b;
+    const long s = ud.step(e);
+    const double* u0 = ud.ptr(i, j, k);
+    const double *um = u0 - s, *u1 = u0 + s, *u2 = u0 + 2 * s;
+    const double r = rho;
+#pragma GCC ivdep
+    for (long m = 0; m < n; ++m) {
+      const double mass = 0.5 * r * (ea[m] * va[m] + eb[m] * vb[m]);
+      const double q_lo = u0[m] + 0.5 * limited_slope<S>(u0[m] - um[m], u1[m] - u0[m]);  // from below (M >= 0)
+      const double q_hi = u1[m] + 0.5 * limited_slope<S>(u1[m] - u2[m], u0[m] - u1[m]);  // from above
+      out[m] = mass * select(mass >= 0, q_lo, q_hi);
+    }
   }
-  // Viscous stress at the upper e-side of face (i, j, k) (component d = D).
+
+  // Viscous stress at the upper e-sides of the row; writes out[0 .. n).
+  //   e == D: T_d at the cell above each face. Reads u_f at both f-faces of that cell
+  //           (f = 0, 1, 2; the divergence), u_D at the face and the next one, eps_cell.
+  //   e != D: T_e at the edge above each face. Reads eps_cell of the four cells around the
+  //           edge, u_D at the face and the next one along e, u_e at the two e-faces above.
   template <int D, int e>
-  double stress(long i, long j, long k) const {
-    constexpr int d = D;
-    const long c = ud.at(i, j, k), se = ud.step(e);
-    const long ce = ec.at(i, j, k);
-    if constexpr (e == d) {
-      double s = 0;
-      for (int f = 0; f < 3; ++f) {
-        const long q = v[f].at(i, j, k);
-        s += v[f].o[q + v[f].step(f)] - v[f].o[q];
+  [[gnu::always_inline]] void stress_row(long i, long j, long k, long n, double* __restrict out) const {
+    const double h = inv_dx, m_u = mu;
+    const double* u = ud.ptr(i, j, k);
+    const double* ep = ec.ptr(i, j, k);
+    if constexpr (e == D) {
+      const double *w0 = v[0].ptr(i, j, k), *w1 = v[1].ptr(i, j, k), *w2 = v[2].ptr(i, j, k);
+      const long s1 = v[1].step(1), s2 = v[2].step(2), sd = ud.step(D);
+#pragma GCC ivdep
+      for (long m = 0; m < n; ++m) {
+        double s = 0;
+        s += w0[m + 1] - w0[m];
+        s += w1[m + s1] - w1[m];
+        s += w2[m + s2] - w2[m];
+        const double div_u = s * h;
+        out[m] = ep[m] * m_u * (2 * (u[m + sd] - u[m]) * h - (2.0 / 3.0) * div_u);
       }
-      const double div_u = s * inv_dx;
-      return ec.o[ce] * mu * (2 * (ud.o[c + ud.step(d)] - ud.o[c]) * inv_dx - (2.0 / 3.0) * div_u);
     } else {
-    const long lo = ce - ec.step(d), ee = ec.step(e);
-    const double eps_edge = 0.25 * (ec.o[ce] + ec.o[lo] + ec.o[ce + ee] + ec.o[lo + ee]);
-    const double dud = (ud.o[c + se] - ud.o[c]) * inv_dx;
-    const View& ve = v[e];
-    const long q = ve.at(i, j, k) + ve.step(e);
-    const double due = (ve.o[q] - ve.o[q - ve.step(d)]) * inv_dx;
-    return eps_edge * mu * (dud + due);
+      const double* lo = ep - ec.step(D);
+      const long ee = ec.step(e), se = ud.step(e);
+      const double* w = v[e].ptr(i, j, k) + v[e].step(e);  // u_e at the e-face above
+      const long wd = v[e].step(D);
+#pragma GCC ivdep
+      for (long m = 0; m < n; ++m) {
+        const double eps_edge = 0.25 * (ep[m] + lo[m] + ep[m + ee] + lo[m + ee]);
+        const double dud = (u[m + se] - u[m]) * h;
+        const double due = (w[m] - w[m - wd]) * h;
+        out[m] = eps_edge * m_u * (dud + due);
+      }
     }
   }
 };
 
-template <Advection S, int D>
+// The flux rows of direction e: advective into fa, viscous into fv (those of the parts on).
+template <Advection S, int D, bool Adv, bool Visc, int e>
+[[gnu::always_inline]] inline void fluxes(const Kernel& K, long i, long j, long k, long n, double* fa, double* fv) {
+  if constexpr (Adv) K.adv_row<S, D, e>(i, j, k, n, fa);
+  if constexpr (Visc) K.stress_row<D, e>(i, j, k, n, fv);
+}
+
+// One row of the divergence: out[q] (the rhs at the faces of the row) -= the advective and
+// += the viscous divergence, from the flux rows: x (n + 1 values, slot 0 the lower side of
+// the first face), y and z below (lo) and above (up). The z rows below are overwritten by
+// those above, for the next plane. Same sums in the same order as the formula.
+template <bool Adv, bool Visc>
+[[gnu::always_inline]] inline void divergence_row(long n, double h, const double* __restrict xa,
+                                                  const double* __restrict ya_lo, const double* __restrict ya_up,
+                                                  double* __restrict za_lo, const double* __restrict za_up,
+                                                  const double* __restrict xv, const double* __restrict yv_lo,
+                                                  const double* __restrict yv_up, double* __restrict zv_lo,
+                                                  const double* __restrict zv_up, double* __restrict out) {
+#pragma GCC ivdep
+  for (long q = 0; q < n; ++q) {
+    if constexpr (Adv) {
+      double div = 0;
+      div += xa[q + 1] - xa[q];
+      div += ya_up[q] - ya_lo[q];
+      div += za_up[q] - za_lo[q];
+      out[q] -= div * h;
+      za_lo[q] = za_up[q];
+    }
+    if constexpr (Visc) {
+      double div = 0;
+      div += xv[q + 1] - xv[q];
+      div += yv_up[q] - yv_lo[q];
+      div += zv_up[q] - zv_lo[q];
+      out[q] += div * h;
+      zv_lo[q] = zv_up[q];
+    }
+  }
+}
+
+// The planes ka <= k < kb of the range: per row (j, k), first the flux rows (upper sides in
+// x, y and z; simple loops that vectorize), then the divergence row. Built for the baseline
+// target, AVX2 and AVX-512 (the best one the processor has is called; no contraction, so
+// all three give the same bits). Adv / Visc: which parts are computed.
+template <Advection S, int D, bool Adv, bool Visc>
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void sweep_planes(
+    const Kernel& K, const FaceRange& r, int ka, int kb, Field& rhs) {
+  const long i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1];
+  const long ni = i1 - i0, nj = j1 - j0;
+  // Flux buffers (advective a, viscous v): x along the row (slot 0 = face i0 - 1), y of the
+  // row below and of this row, z of the plane below (per row) and of this row.
+  std::vector<double> xa(ni + 1), xv(ni + 1), ya(ni), yv(ni), ya2(ni), yv2(ni), za(ni * nj), zv(ni * nj),
+      za2(ni), zv2(ni);
+  double *ya_lo = ya.data(), *ya_up = ya2.data(), *yv_lo = yv.data(), *yv_up = yv2.data();
+  for (int k = ka; k < kb; ++k) {
+    if (k == ka)
+      for (long j = j0; j < j1; ++j)
+        fluxes<S, D, Adv, Visc, 2>(K, i0, j, k - 1, ni, za.data() + (j - j0) * ni, zv.data() + (j - j0) * ni);
+    fluxes<S, D, Adv, Visc, 1>(K, i0, j0 - 1, k, ni, ya_lo, yv_lo);
+    double* out = rhs.data() + rhs.index(0, 0, k);
+    for (long j = j0; j < j1; ++j) {
+      fluxes<S, D, Adv, Visc, 0>(K, i0 - 1, j, k, ni + 1, xa.data(), xv.data());
+      fluxes<S, D, Adv, Visc, 1>(K, i0, j, k, ni, ya_up, yv_up);
+      fluxes<S, D, Adv, Visc, 2>(K, i0, j, k, ni, za2.data(), zv2.data());
+      divergence_row<Adv, Visc>(ni, K.inv_dx, xa.data(), ya_lo, ya_up, za.data() + (j - j0) * ni, za2.data(),
+                                xv.data(), yv_lo, yv_up, zv.data() + (j - j0) * ni, zv2.data(),
+                                out + rhs.stride(1) * j + i0);
+      std::swap(ya_lo, ya_up);  // this row's upper y-fluxes are the next row's lower ones
+      std::swap(yv_lo, yv_up);
+    }
+  }
+}
+
+// OpenMP splits the planes into contiguous chunks, one per thread. The chunk is a call of
+// sweep_planes from inside the parallel region: GCC outlines the region's body before it
+// makes the target clones, so a loop written in the region itself would only be built for
+// the baseline target.
+template <Advection S, int D, bool Adv, bool Visc>
 void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
   const int i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0], k1 = r[2][1];
   if (i1 <= i0 || j1 <= j0 || k1 <= k0) return;
@@ -89,50 +216,7 @@ void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
   {
     const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
     const int ka = k0 + static_cast<int>(nk * tid / nth), kb = k0 + static_cast<int>(nk * (tid + 1) / nth);
-    // Buffers of upper-side fluxes: x along the row (index i - i0 + 1, slot 0 = face i0 - 1),
-    // y of the previous row, z of the previous plane.
-    std::vector<double> xa(ni + 1), xv(ni + 1), ya(ni), yv(ni), za(ni * nj), zv(ni * nj);
-    auto upper = [&]<int e>(std::integral_constant<int, e>, long i, long j, long k, double& fa, double& fv) {
-      fa = K.advect ? K.template adv<S, D, e>(i, j, k) : 0.0;
-      fv = K.visc ? K.template stress<D, e>(i, j, k) : 0.0;
-    };
-    constexpr std::integral_constant<int, 0> X{};
-    constexpr std::integral_constant<int, 1> Y{};
-    constexpr std::integral_constant<int, 2> Z{};
-    for (int k = ka; k < kb; ++k) {
-      if (k == ka)
-        for (long j = j0; j < j1; ++j)
-          for (long i = i0; i < i1; ++i) upper(Z, i, j, k - 1, za[(j - j0) * ni + i - i0], zv[(j - j0) * ni + i - i0]);
-      for (long i = i0; i < i1; ++i) upper(Y, i, j0 - 1, k, ya[i - i0], yv[i - i0]);
-      double* out = rhs.data() + rhs.index(0, 0, k);
-      for (long j = j0; j < j1; ++j) {
-        for (long i = i0 - 1; i < i1; ++i) upper(X, i, j, k, xa[i - i0 + 1], xv[i - i0 + 1]);
-        double* ro = out + rhs.stride(1) * j;
-        double* zar = za.data() + (j - j0) * ni;
-        double* zvr = zv.data() + (j - j0) * ni;
-        for (long i = i0; i < i1; ++i) {
-          const long q = i - i0;
-          double fya, fyv, fza, fzv;
-          upper(Y, i, j, k, fya, fyv);
-          upper(Z, i, j, k, fza, fzv);
-          if (K.advect) {
-            double div = 0;
-            div += xa[q + 1] - xa[q];
-            div += fya - ya[q];
-            div += fza - zar[q];
-            ro[i] -= div * K.inv_dx;
-          }
-          if (K.visc) {
-            double div = 0;
-            div += xv[q + 1] - xv[q];
-            div += fyv - yv[q];
-            div += fzv - zvr[q];
-            ro[i] += div * K.inv_dx;
-          }
-          ya[q] = fya, yv[q] = fyv, zar[q] = fza, zvr[q] = fzv;
-        }
-      }
-    }
+    if (ka < kb) sweep_planes<S, D, Adv, Visc>(K, r, ka, kb, rhs);
   }
 }
 
@@ -153,28 +237,34 @@ void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, 
   if (!advect && !visc) return;
   const Field& dummy = *vel[d];
   auto view_or = [&](const Field* f) { return View(f ? *f : dummy); };
-  Kernel K{d,
-           rho,
+  Kernel K{rho,
            mu,
            1.0 / g.dx,
            View(*vel[d]),
            View(visc ? eps_cell : dummy),
            {View(*vel[0]), View(*vel[1]), View(*vel[2])},
-           {view_or(eps_face[0]), view_or(eps_face[1]), view_or(eps_face[2])},
-           advect,
-           visc};
-  // The component d and the flux direction e are template arguments: the strides and the
-  // e == d branch are resolved at compile time (same arithmetic).
-  auto run = [&]<Advection S>() {
-    if (d == 0) sweep<S, 0>(K, range, rhs);
-    else if (d == 1) sweep<S, 1>(K, range, rhs);
-    else sweep<S, 2>(K, range, rhs);
+           {view_or(eps_face[0]), view_or(eps_face[1]), view_or(eps_face[2])}};
+  // The component d, the flux direction e, the scheme and which parts are computed are
+  // template arguments: strides, the e == d branch, the limiter and the part switches are
+  // resolved at compile time (same arithmetic).
+  auto run = [&]<Advection S, bool Adv, bool Visc>() {
+    if (d == 0) sweep<S, 0, Adv, Visc>(K, range, rhs);
+    else if (d == 1) sweep<S, 1, Adv, Visc>(K, range, rhs);
+    else sweep<S, 2, Adv, Visc>(K, range, rhs);
   };
+  auto with_parts = [&]<Advection S>() {
+    if (visc) run.template operator()<S, true, true>();
+    else run.template operator()<S, true, false>();
+  };
+  if (!advect) {  // viscous part only: the scheme plays no part
+    run.template operator()<Advection::Upwind, false, true>();
+    return;
+  }
   switch (scheme) {
-    case Advection::Upwind: run.template operator()<Advection::Upwind>(); break;
-    case Advection::Central: run.template operator()<Advection::Central>(); break;
-    case Advection::VanLeer: run.template operator()<Advection::VanLeer>(); break;
-    case Advection::MC: run.template operator()<Advection::MC>(); break;
+    case Advection::Upwind: with_parts.template operator()<Advection::Upwind>(); break;
+    case Advection::Central: with_parts.template operator()<Advection::Central>(); break;
+    case Advection::VanLeer: with_parts.template operator()<Advection::VanLeer>(); break;
+    case Advection::MC: with_parts.template operator()<Advection::MC>(); break;
   }
 }
 
