@@ -8,9 +8,9 @@
 //   * Work: the energy a contact dissipates in one step;
 //   * select() and cgdem_sqrt(): what a law's force function may use and still vectorize.
 #pragma once
-#include <bit>
 #include <cstdint>
 
+#include "core/select.hpp"
 #include "core/vec3.hpp"
 
 // IEEE square root with vector variants (x86-64 vector function ABI, defined in
@@ -23,14 +23,8 @@ double cgdem_sqrt(double);
 
 namespace cgdem::contact {
 
-// c ? a : b without a branch (a loop using it needs no if-conversion to vectorize).
-inline double select(bool c, double a, double b) {
-  const uint64_t m = -static_cast<uint64_t>(c);
-  return std::bit_cast<double>((std::bit_cast<uint64_t>(a) & m) | (std::bit_cast<uint64_t>(b) & ~m));
-}
-inline Vec3 select(bool c, const Vec3& a, const Vec3& b) {
-  return {select(c, a.x, b.x), select(c, a.y, b.y), select(c, a.z, b.z)};
-}
+// c ? a : b without a branch (core/select.hpp).
+using cgdem::select;
 
 // The stored history of one contact: eight doubles (one cache line, a group size the
 // vectorizer handles), trivially copyable and without padding. The slots have a fixed

@@ -3,11 +3,11 @@
 #pragma GCC optimize("fp-contract=off")
 #include "fluid/momentum_terms.hpp"
 
+#include "core/select.hpp"
+
 #include <omp.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,15 +26,6 @@ struct View {
   // Address of element (i, j, k).
   const double* ptr(long i, long j, long k) const { return o + at(i, j, k); }
 };
-
-// c ? x : y with both x and y evaluated, as a blend of their bits under a mask of c: exactly
-// x or y. Written as ?:, GCC makes a branch of it, moves the work of each side into its
-// branch and then cannot take it out again (an FP operation may trap), and the loop does
-// not vectorize ("control flow in loop").
-inline double select(bool c, double x, double y) {
-  const uint64_t m = -static_cast<uint64_t>(c);
-  return std::bit_cast<double>((std::bit_cast<uint64_t>(x) & m) | (std::bit_cast<uint64_t>(y) & ~m));
-}
 
 // std::fmin(x, y) as the C library of this platform computes it for quiet operands (glibc,
 // x86-64: minsd when ordered, x < y ? x : y; otherwise the operand that is not NaN, x when
