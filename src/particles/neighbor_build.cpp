@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <numeric>
 
@@ -329,23 +331,47 @@ void find_wall_candidates(NeighborList& nl, const Particles& p, const geometry::
   std::vector<geometry::Aabb> part_box(nparts);
   for (int q = 0; q < nparts; ++q) part_box[q] = walls.part_bounds(q);
   nl.wall_offset.assign(np + 1, 0);
-  std::vector<std::vector<int>> cand(np);
+  auto is_candidate = [&](int i, int q) {
+    const double reach = p.radius[i] + nl.skin;
+    return part_box[q].distance(p.x[i]) < reach && walls.part_distance(q, p.x[i]) < reach;
+  };
+  // Up to 64 parts: each particle's candidates as a bit mask (bit q: part q), no
+  // allocation per particle; more parts: a list per particle.
+  const bool masks = nparts <= 64;
+  std::vector<uint64_t> mask(masks ? np : 0);
+  std::vector<std::vector<int>> cand(masks ? 0 : np);
 #pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < no; ++i) {
-    const double reach = p.radius[i] + nl.skin;
-    for (int q = 0; q < nparts; ++q)
-      if (part_box[q].distance(p.x[i]) < reach && walls.part_distance(q, p.x[i]) < reach) cand[i].push_back(q);
-    nl.wall_offset[i + 1] = static_cast<int>(cand[i].size());
+    if (masks) {
+      uint64_t m = 0;
+      for (int q = 0; q < nparts; ++q)
+        if (is_candidate(i, q)) m |= uint64_t{1} << q;
+      mask[i] = m;
+      nl.wall_offset[i + 1] = std::popcount(m);
+    } else {
+      for (int q = 0; q < nparts; ++q)
+        if (is_candidate(i, q)) cand[i].push_back(q);
+      nl.wall_offset[i + 1] = static_cast<int>(cand[i].size());
+    }
   }
   std::partial_sum(nl.wall_offset.begin(), nl.wall_offset.end(), nl.wall_offset.begin());
   nl.wall_part.resize(nl.wall_offset[np]);
-  nl.wall_hist.assign(nl.wall_offset[np], contact::History{});
+  nl.wall_hist.resize(nl.wall_offset[np]);
+  // Each particle writes its own entries: its parts in part order, their histories (the
+  // old lists' for the same part, else none).
+#pragma omp parallel for schedule(static) if (np >= 512)
   for (int i = 0; i < no; ++i) {
-    std::copy(cand[i].begin(), cand[i].end(), nl.wall_part.begin() + nl.wall_offset[i]);
+    int e = nl.wall_offset[i];
+    if (masks) {
+      for (uint64_t m = mask[i]; m; m &= m - 1) nl.wall_part[e++] = std::countr_zero(m);
+    } else {
+      std::copy(cand[i].begin(), cand[i].end(), nl.wall_part.begin() + e);
+    }
+    for (e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e) nl.wall_hist[e] = contact::History{};
     if (!old.valid) continue;
     const int oi = order[i];
     for (int k = old.woff[oi]; k < old.woff[oi + 1]; ++k)
-      for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
+      for (e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)
         if (nl.wall_part[e] == old.wpart[k]) nl.wall_hist[e] = old.whist[k];
   }
   for (const CarriedWall& c : nl.incoming.walls) {

@@ -78,29 +78,49 @@ void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
   x_at_build.clear();  // needs_rebuild() is true until the next build()
 }
 
+// Every loop writes each element once, from its own inputs: parallel, and the same result
+// for any number of threads.
 void NeighborList::derive() {
-  const size_t ne = partner.size();
-  live.resize(ne);
-  for (size_t e = 0; e < ne; ++e) live[e] = !hist[e].empty();
-  rev_pos.resize(ne);
-  for (size_t k = 0; k < rev_entry.size(); ++k) {
-    if (rev_entry[k] < 0 || static_cast<size_t>(rev_entry[k]) >= ne)
-      throw Error("neighbour list: reverse index out of range (corrupt checkpoint?)");
-    rev_pos[rev_entry[k]] = static_cast<int>(k);
-  }
-  f_partner.assign(ne, Vec3{});
-  t_partner.assign(ne, Vec3{});
+  const long ne = static_cast<long>(partner.size()), nr = static_cast<long>(rev_entry.size());
   const int np = static_cast<int>(offset.size()) - 1;
-  first_owner.assign(np, -1);
-  last_owner.assign(np, -1);
-  for (int i = 0; i < np; ++i)
-    for (int e = offset[i]; e < offset[i + 1]; ++e) {
-      const int j = partner[e];
-      if (first_owner[j] < 0) first_owner[j] = i;
-      last_owner[j] = i;
+  const bool par = ne >= 4096;
+  long bad = rev_offset.size() != static_cast<size_t>(np) + 1 || rev_offset.front() != 0 || rev_offset.back() != nr;
+  for (int j = 0; j < np && !bad; ++j) bad = rev_offset[j + 1] < rev_offset[j];
+#pragma omp parallel for schedule(static) if (par) reduction(+ : bad)
+  for (long k = 0; k < nr; ++k) bad += rev_entry[k] < 0 || rev_entry[k] >= ne;
+  if (bad) throw Error("neighbour list: reverse index out of range (corrupt checkpoint?)");
+  live.resize(ne);
+  rev_pos.resize(ne);
+  f_partner.resize(ne);
+  t_partner.resize(ne);
+#pragma omp parallel if (par)
+  {
+#pragma omp for schedule(static) nowait
+    for (long e = 0; e < ne; ++e) {
+      live[e] = !hist[e].empty();
+      f_partner[e] = Vec3{};
+      t_partner[e] = Vec3{};
     }
-  f_acc.assign(np, Vec3{});
-  t_acc.assign(np, Vec3{});
+#pragma omp for schedule(static)
+    for (long k = 0; k < nr; ++k) rev_pos[rev_entry[k]] = static_cast<int>(k);
+  }
+  // A partner's lowest and highest owners: the owners of its first and last entries (the
+  // reverse index lists them in increasing entry order, and entries go owner by owner).
+  first_owner.resize(np);
+  last_owner.resize(np);
+  f_acc.resize(np);
+  t_acc.resize(np);
+  auto owner_of = [this](int e) {
+    return static_cast<int>(std::upper_bound(offset.begin(), offset.end(), e) - offset.begin()) - 1;
+  };
+#pragma omp parallel for schedule(static) if (par)
+  for (int j = 0; j < np; ++j) {
+    const bool any = rev_offset[j + 1] > rev_offset[j];
+    first_owner[j] = any ? owner_of(rev_entry[rev_offset[j]]) : -1;
+    last_owner[j] = any ? owner_of(rev_entry[rev_offset[j + 1] - 1]) : -1;
+    f_acc[j] = Vec3{};
+    t_acc[j] = Vec3{};
+  }
   direct_team = 0;
 }
 
