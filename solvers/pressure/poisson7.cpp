@@ -1,4 +1,7 @@
 // 7-point operator A = -div(a grad .) on the cell-centred grid; see poisson7.hpp.
+// No floating-point contraction: the AVX2 / AVX-512 builds of apply_interior would
+// otherwise fuse multiply-adds, and every build must compute the baseline's bits.
+#pragma GCC optimize("fp-contract=off")
 #include "solvers/pressure/poisson7.hpp"
 
 #include <omp.h>
@@ -35,6 +38,18 @@ bool same_sign_pattern(const std::vector<double>& a, const std::vector<double>& 
   return eq;
 }
 
+// y = A x along one row without its periodic wrap (apply_rows adds that). Built for AVX-512,
+// AVX2 and the baseline; contraction is off for the file, so every build gives the same bits.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void apply_interior(
+    int nx, const double* __restrict d, const double* __restrict xr, const double* __restrict wxr,
+    const double* __restrict ws, const double* __restrict wn, const double* __restrict wb,
+    const double* __restrict wt, const double* xs, const double* xn, const double* xb, const double* xt,
+    double* __restrict yr) {
+  for (int i = 0; i < nx; ++i)
+    yr[i] = d[i] * xr[i] - ws[i] * xs[i] - wn[i] * xn[i] - wb[i] * xb[i] - wt[i] * xt[i];
+  for (int i = 1; i < nx; ++i) yr[i] -= wxr[i] * xr[i - 1];
+  for (int i = 0; i < nx - 1; ++i) yr[i] -= wxr[i + 1] * xr[i + 1];
+}
 }  // namespace
 
 double dot(const double* a, const double* b, long n) {
@@ -291,10 +306,7 @@ void Poisson7::apply_rows(const double* x, double* y, const double* b, double* r
       // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
       const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
           row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
-      for (int i = 0; i < nx; ++i)
-        yr[i] = d[i] * xr[i] - ws[i] * xs[i] - wn[i] * xn[i] - wb[i] * xb[i] - wt[i] * xt[i];
-      for (int i = 1; i < nx; ++i) yr[i] -= wxr[i] * xr[i - 1];
-      for (int i = 0; i < nx - 1; ++i) yr[i] -= wxr[i + 1] * xr[i + 1];
+      apply_interior(nx, d, xr, wxr, ws, wn, wb, wt, xs, xn, xb, xt, yr);
       if (px) {  // wrap face 0 joins cell nx-1 and cell 0
         yr[0] -= wxr[0] * xr[nx - 1];
         yr[nx - 1] -= wxr[0] * xr[0];

@@ -69,6 +69,19 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
     xr[i] = s * id[i];
   }
 }
+
+// r = b - A x along one row without its periodic wrap (residual_row adds that): the
+// arithmetic of Poisson7::apply_rows in float, built like gs_interior.
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void residual_interior(
+    int nx, const float* __restrict br, const float* __restrict d, const float* __restrict xr,
+    const float* __restrict wxr, const float* __restrict ws, const float* __restrict wn, const float* __restrict wb,
+    const float* __restrict wt, const float* xs, const float* xn, const float* xb, const float* xt,
+    float* __restrict r) {
+  for (int i = 0; i < nx; ++i)
+    r[i] = br[i] - d[i] * xr[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
+  for (int i = 1; i < nx; ++i) r[i] += wxr[i] * xr[i - 1];
+  for (int i = 0; i < nx - 1; ++i) r[i] += wxr[i + 1] * xr[i + 1];
+}
 }  // namespace
 
 // One colour of row (j, k), as Poisson7::gs_row in float; the modes: stencil32.hpp.
@@ -149,10 +162,7 @@ void Stencil32::residual_row(const float* b, const float* x, int j, int k, float
   const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
   const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
       row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
-  for (int i = 0; i < nx; ++i)
-    r[i] = br[i] - d[i] * xr[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
-  for (int i = 1; i < nx; ++i) r[i] += wxr[i] * xr[i - 1];
-  for (int i = 0; i < nx - 1; ++i) r[i] += wxr[i + 1] * xr[i + 1];
+  residual_interior(nx, br, d, xr, wxr, ws, wn, wb, wt, xs, xn, xb, xt, r);
   if (px_) {
     r[0] += wxr[0] * xr[nx - 1];
     r[nx - 1] += wxr[0] * xr[0];
