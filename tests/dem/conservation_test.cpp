@@ -107,7 +107,7 @@ TEST(Conservation, OneAndTwoThreadsBitIdentical) {
 }
 
 // The force pass skips gathering the radii when every parcel has the same one (the
-// screening and the one-species kernel take r + r from a register). That must be the
+// screening of the list entries takes r + r from a register). That must be the
 // gathered path's bits: the cluster stepped alone (every parcel of one radius) against the
 // same cluster beside one parcel of a second species, of 100 instead of 125 um, far above
 // it (the radii differ: the screening gathers them and the kernel is the several-species
