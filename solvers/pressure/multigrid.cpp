@@ -1,6 +1,8 @@
 // Multigrid V-cycle preconditioner; see multigrid.hpp.
 #include "solvers/pressure/multigrid.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 
 namespace cgdem::pressure {
@@ -90,25 +92,47 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
     coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
   if (precision_ == Precision::Single) {
     scale_ = stencil32_scale(op);
-    for (auto& L : lv_) L.s32.set(*L.op, scale_, omega_);
+    // The finest level visits only the cells with D > 0 (stencil32.hpp); apply() writes z = 0
+    // on the others.
+    for (size_t l = 0; l < lv_.size(); ++l) lv_[l].s32.set(*lv_[l].op, scale_, omega_, l == 0 && lv_.size() > 1);
   }
 }
 
-void MultigridPreconditioner::apply(const double* r, double* z) {
+void MultigridPreconditioner::apply(const double* rin, double* z) {
   if (precision_ == Precision::Double) {
-    b0_ = r, x0_ = z;  // level 0 works in place on the caller's arrays
+    b0_ = rin, x0_ = z;  // level 0 works in place on the caller's arrays
     vcycle(0, true);
     return;
   }
-  const long n = grids_[0].cells();
+  // r to float and z = s x back, on the finest level's active segments; z = 0 elsewhere (where
+  // the whole cycle gives 0 up to the sign: D = 0 and b = 0 there, stencil32.hpp).
+  const ActiveRows& act = lv_[0].s32.active();
+  const int nx = grids_[0].nx;
   float* bf = lv_[0].bf.data();
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (long c = 0; c < n; ++c) bf[c] = static_cast<float>(r[c]);
+  auto rows = [&](auto&& row) {
+#pragma omp parallel if (grids_[0].cells() >= kParallelMin)
+    {
+      int r0, r1;
+      act.share(omp_get_thread_num(), omp_get_num_threads(), r0, r1);
+      for (int r = r0; r < r1; ++r) row(r, long(nx) * r);
+    }
+  };
+  rows([&](int r, long c0) {
+    for (int q = act.begin(r); q < act.end(r); ++q)
+      for (long c = c0 + act.lo(q); c < c0 + act.hi(q); ++c) bf[c] = static_cast<float>(rin[c]);
+  });
   vcycle32(0, true);
   const float* xf = lv_[0].xf.data();
   const double s = scale_;
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (long c = 0; c < n; ++c) z[c] = s * static_cast<double>(xf[c]);
+  rows([&](int r, long c0) {
+    long done = c0;
+    for (int q = act.begin(r); q < act.end(r); ++q) {
+      std::fill(z + done, z + c0 + act.lo(q), 0.0);
+      for (long c = c0 + act.lo(q); c < c0 + act.hi(q); ++c) z[c] = s * static_cast<double>(xf[c]);
+      done = c0 + act.hi(q);
+    }
+    std::fill(z + done, z + c0 + nx, 0.0);
+  });
 }
 
 // The cycle of multigrid.hpp on the float operators (which are scale_ A).

@@ -110,6 +110,7 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
       same_sign_pattern(old_z, wz_, par) && same_sign_pattern(old_open, open_, par))
     return;
   label_components();
+  active_.from_diag(diag_.data(), g_.nx, g_.ny, g_.nz, periodic(0));
 }
 
 // x faces: interior, periodic wrap (face 0) or boundary (Open sides into open_); y faces
@@ -295,32 +296,49 @@ void Poisson7::apply_rows(const double* x, double* y, const double* b, double* r
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const bool px = periodic(0), py = periodic(1), pz = periodic(2);
   const long plane = long(nx) * ny;
-#pragma omp parallel for collapse(2) schedule(static) if (plane * nz >= kParallelMin)
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j) {
-      const long c0 = long(nx) * (j + long(ny) * k);
-      const double* xr = x + c0;
-      double* yr = y + c0;
-      const double* d = diag_.data() + c0;
-      const double* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
-      // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
-      const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
-          row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
-      apply_interior(nx, d, xr, wxr, ws, wn, wb, wt, xs, xn, xb, xt, yr);
-      if (px) {  // wrap face 0 joins cell nx-1 and cell 0
+  // One row: A x on its active segments (y = 0, or b, in the gaps and outside). A segment's
+  // end cells lose the x-neighbour term across the gap, whose face weight is 0: the sums are
+  // those of the whole row up to the sign of a zero. px: segments are whole rows (wrap below).
+  auto row = [&](int r) {
+    const int j = r % ny, k = r / ny;
+    const long c0 = long(nx) * r;
+    const double* xr = x + c0;
+    double* yr = y + c0;
+    const double* d = diag_.data() + c0;
+    const double* wxr = wx_.data() + long(nx + 1) * r;
+    // Neighbour rows; a missing neighbour points at the own row with a zero face weight.
+    const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
+        row_neighbours<double>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py, pz);
+    const double* br = kResidual ? b + c0 : nullptr;
+    auto outside = [&](int a, int e) {
+      for (int i = a; i < e; ++i) yr[i] = kResidual ? br[i] : 0.0;
+    };
+    int done = 0;
+    double s = 0;
+    for (int q = active_.begin(r); q < active_.end(r); ++q) {
+      const int lo = active_.lo(q), m = active_.hi(q) - lo;
+      outside(done, lo);
+      apply_interior(m, d + lo, xr + lo, wxr + lo, ws + lo, wn + lo, wb + lo, wt + lo, xs + lo, xn + lo, xb + lo,
+                     xt + lo, yr + lo);
+      if (px) {  // wrap face 0 joins cell nx-1 and cell 0 (the segment is the whole row)
         yr[0] -= wxr[0] * xr[nx - 1];
         yr[nx - 1] -= wxr[0] * xr[0];
       }
-      if constexpr (kResidual) {
-        const double* br = b + c0;
-        for (int i = 0; i < nx; ++i) yr[i] = br[i] - yr[i];
-      }
-      if (row_dot) {
-        double s = 0;
-        for (int i = 0; i < nx; ++i) s += xr[i] * yr[i];
-        row_dot[j + long(ny) * k] = s;
-      }
+      if constexpr (kResidual)
+        for (int i = lo; i < lo + m; ++i) yr[i] = br[i] - yr[i];
+      if (row_dot)
+        for (int i = lo; i < lo + m; ++i) s += xr[i] * yr[i];
+      done = lo + m;
     }
+    outside(done, nx);
+    if (row_dot) row_dot[r] = s;
+  };
+#pragma omp parallel if (plane * nz >= kParallelMin)
+  {
+    int r0, r1;
+    active_.share(omp_get_thread_num(), omp_get_num_threads(), r0, r1);
+    for (int r = r0; r < r1; ++r) row(r);
+  }
 }
 
 void Poisson7::apply(const double* x, double* y) const { apply_rows<false>(x, y, nullptr); }

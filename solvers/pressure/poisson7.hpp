@@ -16,6 +16,7 @@
 #pragma once
 #include <vector>
 
+#include "solvers/pressure/active_rows.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::pressure {
@@ -28,8 +29,10 @@ class Poisson7 {
   void set(const std::vector<double>& ax, const std::vector<double>& ay, const std::vector<double>& az);
 
   // y = A x (both of length cells()); OpenMP over (j,k) rows, result independent of threads.
+  // Only the active rows' segments (active()) are computed; y = 0 on the other cells (what
+  // A x is there for finite x, up to the sign of zero).
   void apply(const double* x, double* y) const;
-  // r = b - A x
+  // r = b - A x (r = b outside the active segments)
   void residual(const double* b, const double* x, double* r) const;
   // y = A x and returns x . y (row partial sums added in row order: independent of threads).
   double apply_dot(const double* x, double* y) const;
@@ -64,6 +67,9 @@ class Poisson7 {
   int floating_components() const { return n_floating_; }
   // Component id of a floating cell, -1 for a grounded cell.
   const std::vector<int>& floating_id() const { return comp_; }
+  // The cells with D > 0 as row segments (active_rows.hpp), updated by set() whenever the
+  // pattern of positive weights changes.
+  const ActiveRows& active() const { return active_; }
   bool periodic(int axis) const { return g_.bc[2 * axis] == Boundary::Periodic; }
 
  private:
@@ -84,6 +90,7 @@ class Poisson7 {
   std::vector<long> isolated_cells_, shared_cells_;  // of one-cell / larger floating components
   std::vector<double> comp_count_;
   int n_floating_ = 0;
+  ActiveRows active_;
 };
 
 // Loops shorter than this run serially: tiny OpenMP regions only cost barriers (badly so on a

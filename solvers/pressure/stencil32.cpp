@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "solvers/pressure/stencil_rows.hpp"
 
 namespace cgdem::pressure {
@@ -20,8 +21,11 @@ double stencil32_scale(const Poisson7& op) {
   return std::ldexp(1.0, -static_cast<int>(std::lround(std::log2(m))));
 }
 
-void Stencil32::set(const Poisson7& op, double scale, double omega) {
+void Stencil32::set(const Poisson7& op, double scale, double omega, bool active_only) {
+  const bool resized = g_.nx != op.grid().nx || g_.ny != op.grid().ny || g_.nz != op.grid().nz;
   g_ = op.grid();
+  if (active_only) act_ = op.active();
+  else if (resized || act_.rows() != g_.ny * g_.nz) act_.all(g_.nx, g_.ny, g_.nz);
   px_ = op.periodic(0), py_ = op.periodic(1), pz_ = op.periodic(2);
   auto copy = [scale](const std::vector<double>& in, std::vector<float>& out) {
     out.resize(in.size());
@@ -42,19 +46,18 @@ void Stencil32::set(const Poisson7& op, double scale, double omega) {
 }
 
 namespace {
-// The update of the cells i = i0, i0 + 2, ... < nx of one row that have both x neighbours in the
-// row (1 <= i <= nx - 2), written without branches so that it vectorises (stride 2), in the
+// The update of the cells i = first, first + 2, ... < end of one row, all with both x neighbours
+// in the row (1 <= first, end <= nx - 1), written without branches so that it vectorises (stride 2), in the
 // summation order of Poisson7::gs_row; id = omega/D (0 where D = 0: that cell is set to keep x),
 // keep = 1 - omega (0: the plain update, which does not read x_c).
 // Compiled for AVX-512, AVX2 and the baseline; the arithmetic is the same IEEE float either way
 // (contraction is off for the whole file, above).
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void gs_interior(
-    int i0, int nx, const float* __restrict br, const float* __restrict id, const float* __restrict wxr,
+    int first, int end, const float* __restrict br, const float* __restrict id, const float* __restrict wxr,
     const float* __restrict ws, const float* __restrict wn, const float* __restrict wb, const float* __restrict wt,
     const float* xs, const float* xn, const float* xb, const float* xt, float* xr, float keep) {
-  const int first = i0 == 0 ? 2 : i0;
   if (keep != 0.0f) {
-    for (int i = first; i < nx - 1; i += 2) {
+    for (int i = first; i < end; i += 2) {
       float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
       s += wxr[i] * xr[i - 1];
       s += wxr[i + 1] * xr[i + 1];
@@ -62,7 +65,7 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
     }
     return;
   }
-  for (int i = first; i < nx - 1; i += 2) {
+  for (int i = first; i < end; i += 2) {
     float s = br[i] + ws[i] * xs[i] + wn[i] * xn[i] + wb[i] * xb[i] + wt[i] * xt[i];
     s += wxr[i] * xr[i - 1];
     s += wxr[i + 1] * xr[i + 1];
@@ -84,19 +87,24 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
 }
 }  // namespace
 
-// One colour of row (j, k), as Poisson7::gs_row in float; the modes: stencil32.hpp.
+// One colour of row (j, k), as Poisson7::gs_row in float, over the row's segments; the modes:
+// stencil32.hpp.
 void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
-  const long c0 = long(nx) * (j + long(ny) * k);
+  const int r = j + ny * k;
+  if (act_.begin(r) == act_.end(r)) return;
+  const long c0 = long(nx) * r;
   float* xr = x + c0;
   const float* br = b + c0;
   const float* id = id_.data() + c0;
   const int i0 = (j + k + color) & 1;
+  auto first_of = [i0](int a) { return a + ((a ^ i0) & 1); };  // the first cell of the colour from a on
   if (mode == Mode::kZeroFirst) {
-    for (int i = i0; i < nx; i += 2) xr[i] = br[i] * id[i];
+    for (int q = act_.begin(r); q < act_.end(r); ++q)
+      for (int i = first_of(act_.lo(q)); i < act_.hi(q); i += 2) xr[i] = br[i] * id[i];
     return;
   }
-  const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
+  const float* wxr = wx_.data() + long(nx + 1) * r;
   const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
       row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
   const float keep = mode == Mode::kFromZero ? 0.0f : keep_;
@@ -106,18 +114,31 @@ void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode m
     if (i < nx - 1) s += wxr[i + 1] * xr[i + 1]; else if (px_) s += wxr[0] * xr[0];
     xr[i] = keep != 0.0f ? keep * xr[i] + s * id[i] : s * id[i];
   };
-  if (i0 == 0) edge(0);
-  gs_interior(i0, nx, br, id, wxr, ws, wn, wb, wt, xs, xn, xb, xt, xr, keep);
-  if ((nx - 1 - i0) % 2 == 0 && nx - 1 > 0) edge(nx - 1);
+  for (int q = act_.begin(r); q < act_.end(r); ++q) {
+    const int lo = act_.lo(q), hi = act_.hi(q);
+    if (lo == 0 && i0 == 0) edge(0);
+    const int a = std::max(lo, 1), e = std::min(hi, nx - 1);
+    if (a < e) gs_interior(first_of(a), e, br, id, wxr, ws, wn, wb, wt, xs, xn, xb, xt, xr, keep);
+    if (hi == nx && (nx - 1 - i0) % 2 == 0 && nx - 1 > 0) edge(nx - 1);
+  }
 }
 
+void Stencil32::gs_plane(const float* b, float* x, int k, int color, Mode mode) const {
+  for (int j = 0; j < g_.ny; ++j) gs_row(b, x, j, k, color, mode);
+}
+
+// Rows shared by active cells between the threads (active_rows.hpp); each row depends only
+// on cells of the other colour, so the split does not change the result.
 void Stencil32::gs_color(const float* b, float* x, int color, Mode mode) const {
   const int ny = g_.ny, nz = g_.nz;
   const long plane = long(g_.nx) * ny;
   const bool odd_wrap = (py_ && ny % 2) || (pz_ && nz % 2);
-#pragma omp parallel for collapse(2) schedule(static) if (!odd_wrap && plane * nz >= kParallelMin)
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, mode);
+#pragma omp parallel if (!odd_wrap && plane * nz >= kParallelMin)
+  {
+    int r0, r1;
+    act_.share(omp_get_thread_num(), omp_get_num_threads(), r0, r1);
+    for (int r = r0; r < r1; ++r) gs_row(b, x, r % ny, r / ny, color, mode);
+  }
 }
 
 void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) const {
@@ -135,13 +156,13 @@ void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) co
     gs_color(b, x, second, m2);
     return;
   }
-  auto plane_sweep = [&](int k, int color, Mode m) {
-    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, m);
-  };
+  auto plane_sweep = [&](int k, int color, Mode m) { gs_plane(b, x, k, color, m); };
+  // Each thread's planes, balanced by active cells: any split of the planes gives the same
+  // result (Poisson7::gauss_seidel_pair).
 #pragma omp parallel if (plane * nz >= kParallelMin)
   {
-    const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
-    const int ka = int(long(nz) * tid / nth), kb = int(long(nz) * (tid + 1) / nth);
+    int ka, kb;
+    act_.share_planes(omp_get_thread_num(), omp_get_num_threads(), ka, kb);
     for (int k = ka; k < kb; ++k) {
       plane_sweep(k, first, m1);
       if (k - 1 > ka && k - 1 < kb - 1) plane_sweep(k - 1, second, m2);
@@ -152,8 +173,9 @@ void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) co
   }
 }
 
-// r = b - A x on row (j, k) (the arithmetic of Poisson7::apply_rows, in float).
-void Stencil32::residual_row(const float* b, const float* x, int j, int k, float* r) const {
+// r = b - A x on the cells [lo, hi) of row (j, k) (the arithmetic of Poisson7::apply_rows, in
+// float; r indexed by i).
+void Stencil32::residual_row(const float* b, const float* x, int j, int k, int lo, int hi, float* r) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
   const long c0 = long(nx) * (j + long(ny) * k);
   const float* xr = x + c0;
@@ -162,8 +184,9 @@ void Stencil32::residual_row(const float* b, const float* x, int j, int k, float
   const float* wxr = wx_.data() + long(nx + 1) * (j + long(ny) * k);
   const auto [xs, xn, xb, xt, ws, wn, wb, wt] =
       row_neighbours<float>(xr, wy_.data(), wz_.data(), nx, ny, nz, j, k, py_, pz_);
-  residual_interior(nx, br, d, xr, wxr, ws, wn, wb, wt, xs, xn, xb, xt, r);
-  if (px_) {
+  residual_interior(hi - lo, br + lo, d + lo, xr + lo, wxr + lo, ws + lo, wn + lo, wb + lo, wt + lo, xs + lo, xn + lo,
+                    xb + lo, xt + lo, r + lo);
+  if (px_) {  // the segments of a periodic x axis are whole rows
     r[0] += wxr[0] * xr[nx - 1];
     r[nx - 1] += wxr[0] * xr[0];
   }
@@ -171,33 +194,45 @@ void Stencil32::residual_row(const float* b, const float* x, int j, int k, float
 
 void Stencil32::restrict_residual(const float* b, const float* x, const GridSpec& c, float* bc) const {
   const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
+  if (c.nx != (nx + 1) / 2 || c.ny != (ny + 1) / 2 || c.nz != (nz + 1) / 2)
+    throw Error("pressure: restriction onto a grid that is not this one coarsened by 2");
 #pragma omp parallel if (n() >= kParallelMin)
   {
     std::vector<float> row(nx);
-#pragma omp for collapse(2) schedule(static)
-    for (int K = 0; K < c.nz; ++K)
-      for (int J = 0; J < c.ny; ++J) {
-        float* out = bc + long(c.nx) * (J + long(c.ny) * K);
-        std::fill(out, out + c.nx, 0.0f);
-        for (int k = 2 * K; k <= std::min(2 * K + 1, nz - 1); ++k)
-          for (int j = 2 * J; j <= std::min(2 * J + 1, ny - 1); ++j) {
-            residual_row(b, x, j, k, row.data());
-            for (int i = 0; i < nx; ++i) out[i / 2] += row[i];
+    int R0, R1;
+    act_.share_coarse(omp_get_thread_num(), omp_get_num_threads(), R0, R1);
+    for (int R = R0; R < R1; ++R) {
+      const int J = R % c.ny, K = R / c.ny;
+      float* out = bc + long(c.nx) * R;
+      std::fill(out, out + c.nx, 0.0f);
+      for (int k = 2 * K; k <= std::min(2 * K + 1, nz - 1); ++k)
+        for (int j = 2 * J; j <= std::min(2 * J + 1, ny - 1); ++j) {
+          const int r = j + ny * k;
+          for (int q = act_.begin(r); q < act_.end(r); ++q) {
+            const int lo = act_.lo(q), hi = act_.hi(q);
+            residual_row(b, x, j, k, lo, hi, row.data());
+            for (int i = lo; i < hi; ++i) out[i / 2] += row[i];
           }
-        for (int I = 0; I < c.nx; ++I) out[I] *= 0.125f;
-      }
+        }
+      for (int I = 0; I < c.nx; ++I) out[I] *= 0.125f;
+    }
   }
 }
 
 void Stencil32::prolong_add(const GridSpec& c, const float* xc, float* x) const {
-  const int nx = g_.nx, ny = g_.ny, nz = g_.nz;
-#pragma omp parallel for collapse(2) schedule(static) if (n() >= kParallelMin)
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j) {
+  const int nx = g_.nx, ny = g_.ny;
+#pragma omp parallel if (n() >= kParallelMin)
+  {
+    int r0, r1;
+    act_.share(omp_get_thread_num(), omp_get_num_threads(), r0, r1);
+    for (int r = r0; r < r1; ++r) {
+      const int j = r % ny, k = r / ny;
       const float* xcr = xc + long(c.nx) * (j / 2 + long(c.ny) * (k / 2));
-      float* xf = x + long(nx) * (j + long(ny) * k);
-      for (int i = 0; i < nx; ++i) xf[i] += xcr[i / 2];
+      float* xf = x + long(nx) * r;
+      for (int q = act_.begin(r); q < act_.end(r); ++q)
+        for (int i = act_.lo(q); i < act_.hi(q); ++i) xf[i] += xcr[i / 2];
     }
+  }
 }
 
 }  // namespace cgdem::pressure

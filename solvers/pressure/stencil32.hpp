@@ -20,6 +20,16 @@
 // branch-free update vectorises.
 // Restriction of the residual R (b - A x), R = P^T/8 (2x2x2 children; fewer at an odd edge),
 // is computed row by row without storing b - A x.
+//
+// Skipping blocked cells (set(..., active_only = true), the multigrid's finest level): every
+// loop visits only the segments of op.active() (cells with D > 0, active_rows.hpp). A cell
+// left out has D = 0 and no open face, so what it holds reaches its neighbours only through
+// weights of 0; on the finest level its b is the PCG residual there, which is 0 (the
+// right-hand side is projected, and (A x)_c = 0). Skipping it leaves x there unwritten and
+// drops its residual, 0, from the restriction: the other cells get the same values (up to the
+// sign of a zero). The caller must not read x there (MultigridPreconditioner writes z = 0).
+// Coarse levels do not skip: a coarse cell without open coarse faces can cover fine cells
+// that are connected inside it, and its x is prolonged to them.
 #pragma once
 #include <vector>
 
@@ -31,7 +41,8 @@ class Stencil32 {
  public:
   // Copies op's weights and diagonal times `scale` in single precision; omega: the relaxation
   // factor of the smoother (1: plain Gauss-Seidel).
-  void set(const Poisson7& op, double scale, double omega = 1.0);
+  // active_only: visit only op.active()'s segments (above).
+  void set(const Poisson7& op, double scale, double omega = 1.0, bool active_only = false);
 
   // Two half-sweeps, colour `first` then 1 - first. zero_start: x is taken as 0 on entry and
   // need not be initialised (the first colour is then b_c / D_c).
@@ -43,6 +54,8 @@ class Stencil32 {
 
   long n() const { return g_.cells(); }
   const GridSpec& grid() const { return g_; }
+  // The rows' segments the loops visit (all cells unless set() was given active_only).
+  const ActiveRows& active() const { return act_; }
 
  private:
   // kNormal: the update above; kFromZero: the same with x_c = 0 before it (the second colour of
@@ -50,13 +63,15 @@ class Stencil32 {
   // that pair (x = 0 around it: x_c = b_c omega/D_c).
   enum class Mode { kNormal, kFromZero, kZeroFirst };
   void gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const;
+  void gs_plane(const float* b, float* x, int k, int color, Mode mode) const;
   void gs_color(const float* b, float* x, int color, Mode mode) const;
-  void residual_row(const float* b, const float* x, int j, int k, float* r) const;
+  void residual_row(const float* b, const float* x, int j, int k, int lo, int hi, float* r) const;
 
   GridSpec g_;
   bool px_ = false, py_ = false, pz_ = false;
   std::vector<float> wx_, wy_, wz_, d_, id_;  // id_ = omega/D (0 where D = 0)
   float keep_ = 0;                            // 1 - omega
+  ActiveRows act_;
 };
 
 // Power of two nearest to 1 / max(D) of op (1 if D = 0 everywhere).
