@@ -24,12 +24,13 @@ KrylovSolver::KrylovSolver(const GridSpec& g, const SolverOptions& opt, std::uni
       pcg_(g.cells(), [this](const double* x, double* y) { op_.apply(x, y); },
            prec_ ? SundialsPcg::Apply([this](const double* r, double* z) {
              prec_->apply(r, z);
-             op_.project_floating(z);  // keeps M symmetric on the mean-free subspace
+             // keeps M symmetric on the mean-free subspace
+             op_.project_floating(z, prec_->zero_outside_active());
            })
                  : SundialsPcg::Apply()),
       fused_(op_, prec_ ? FusedPcg::Apply([this](const double* r, double* z) {
         prec_->apply(r, z);
-        op_.project_floating(z);
+        op_.project_floating(z, prec_->zero_outside_active());
       })
                         : FusedPcg::Apply()),
       engine_(engine) {

@@ -111,6 +111,12 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
     return;
   label_components();
   active_.from_diag(diag_.data(), g_.nx, g_.ny, g_.nz, periodic(0));
+  isolated_active_.clear();
+  for (long c : isolated_cells_) {
+    const int r = static_cast<int>(c / g_.nx), i = static_cast<int>(c % g_.nx);
+    for (int q = active_.begin(r); q < active_.end(r); ++q)
+      if (i >= active_.lo(q) && i < active_.hi(q)) isolated_active_.push_back(c);
+  }
 }
 
 // x faces: interior, periodic wrap (face 0) or boundary (Open sides into open_); y faces
@@ -208,12 +214,13 @@ void Poisson7::label_components() {
   for (long c : floating_cells_) (comp_count_[comp_[c]] == 1.0 ? isolated_cells_ : shared_cells_).push_back(c);
 }
 
-void Poisson7::project_floating(double* v) const {
+void Poisson7::project_floating(double* v, bool zero_outside) const {
   if (n_floating_ == 0) return;
   // One-cell components: v - mean(v) = v - v = 0.
-  const long I = static_cast<long>(isolated_cells_.size());
+  const std::vector<long>& iso = zero_outside ? isolated_active_ : isolated_cells_;
+  const long I = static_cast<long>(iso.size());
 #pragma omp parallel for schedule(static) if (I >= kParallelMin)
-  for (long q = 0; q < I; ++q) v[isolated_cells_[q]] = 0.0;
+  for (long q = 0; q < I; ++q) v[iso[q]] = 0.0;
   const long M = static_cast<long>(shared_cells_.size());
   if (M == 0) return;
   std::vector<double> sum(n_floating_, 0.0);

@@ -12,6 +12,9 @@ class Preconditioner {
   virtual void setup(const Poisson7& op) = 0;
   // z = M^{-1} r for arrays of length op.n().
   virtual void apply(const double* r, double* z) = 0;
+  // True when apply() writes z = 0 on every cell outside op.active()'s segments (cells with
+  // D = 0, which the projection onto the floating components would set to 0 anyway).
+  virtual bool zero_outside_active() const { return false; }
 };
 
 }  // namespace cgdem::pressure

@@ -219,5 +219,12 @@ TEST(ActiveRows, SkippingBlockedCellsChangesNoOtherValue) {
     for (long c = 0; c < n; ++c) nonzero += !in[c] && z[c] != 0, nonfinite += !std::isfinite(z[c]);
     EXPECT_EQ(nonzero, 0);
     EXPECT_EQ(nonfinite, 0);
+    // With z = 0 outside the segments, projecting only the one-cell components inside them
+    // gives the whole projection's result.
+    EXPECT_TRUE(mg.zero_outside_active());
+    std::vector<double> z_all = z;
+    op.project_floating(z_all.data());
+    op.project_floating(z.data(), true);
+    EXPECT_TRUE(z == z_all);
   }
 }
