@@ -27,7 +27,10 @@ KrylovSolver::KrylovSolver(const GridSpec& g, const SolverOptions& opt, std::uni
              // keeps M symmetric on the mean-free subspace
              op_.project_floating(z, prec_->zero_outside_active());
            })
-                 : SundialsPcg::Apply()),
+                 : SundialsPcg::Apply(),
+           // PCG's vector operations skip the blocked cells when the preconditioner reads r
+           // only on the active segments (sundials_pcg.hpp) or there is none.
+           !prec_ || prec_->zero_outside_active() ? &op_.active() : nullptr, g.nx),
       fused_(op_, prec_ ? FusedPcg::Apply([this](const double* r, double* z) {
         prec_->apply(r, z);
         op_.project_floating(z, prec_->zero_outside_active());

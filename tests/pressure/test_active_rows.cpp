@@ -13,6 +13,7 @@
 
 #include "mms.hpp"
 #include "solvers/pressure/multigrid.hpp"
+#include "solvers/pressure/sundials_pcg.hpp"
 
 using namespace cgdem::pressure;
 using B = Boundary;
@@ -227,4 +228,52 @@ TEST(ActiveRows, SkippingBlockedCellsChangesNoOtherValue) {
     op.project_floating(z.data(), true);
     EXPECT_TRUE(z == z_all);
   }
+}
+
+// SUNDIALS PCG with its vector operations on the active segments against the same PCG on every
+// cell (the multigrid preconditioner of the cases, pcg-mgw3's cycle): the same iterations and
+// the same phi on every active cell, bit for bit, for 1 and 2 threads.
+TEST(ActiveRows, SundialsPcgOnTheSegmentsIsThePcgOnEveryCell) {
+  const std::array<B, 6> bc{B::Wall, B::Wall, B::Wall, B::Wall, B::Wall, B::Open};
+  const int nx = 65, ny = 40, nz = 36;
+  test::Problem p = test::make_problem(nx, ny, nz, bc);
+  add_solids(p);
+  Poisson7 op(p.g);
+  op.set(p.ax, p.ay, p.az);
+  const long n = op.n();
+  MultigridPreconditioner mg(p.g, 3, MultigridPreconditioner::Precision::Single, MultigridPreconditioner::Cycle::W,
+                             1.2);
+  mg.setup(op);
+  auto apply = [&](const double* x, double* y) { op.apply(x, y); };
+  auto prec = [&](const double* r, double* z) {
+    mg.apply(r, z);
+    op.project_floating(z, true);
+  };
+  SundialsPcg seg(n, apply, prec, &op.active(), nx), all(n, apply, prec);
+  std::vector<double> b(n);
+  for (long c = 0; c < n; ++c) b[c] = -p.rhs[c];
+  op.project_floating(b.data());
+  const double tol = 1e-9 * std::sqrt(dot(b.data(), b.data(), n));
+  const auto in = covered(op.active(), nx);
+  for (int threads = 1; threads <= 2; ++threads) {
+    omp_set_num_threads(threads);
+    for (const bool zero_guess : {true, false}) {
+      std::vector<double> xs(n, 0.0), xa(n, 0.0);
+      if (!zero_guess) {
+        const auto g = noise(n, 31);
+        for (long c = 0; c < n; ++c) xs[c] = xa[c] = 0.01 * g[c];
+      }
+      const auto rs = seg.solve(b.data(), xs.data(), tol, 200, zero_guess);
+      const auto ra = all.solve(b.data(), xa.data(), tol, 200, zero_guess);
+      ASSERT_TRUE(rs.converged && ra.converged);
+      EXPECT_EQ(rs.iterations, ra.iterations);
+      EXPECT_EQ(rs.res_norm, ra.res_norm);
+      long differ = 0;
+      for (long c = 0; c < n; ++c) differ += in[c] && xs[c] != xa[c];
+      std::printf("%d threads, zero guess %d: %d iterations, %ld active cells differ\n", threads, int(zero_guess),
+                  rs.iterations, differ);
+      EXPECT_EQ(differ, 0);
+    }
+  }
+  omp_set_num_threads(1);
 }
