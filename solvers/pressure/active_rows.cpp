@@ -15,18 +15,37 @@ void ActiveRows::all(int nx, int ny, int nz) {
 }
 
 void ActiveRows::from_diag(const double* diag, int nx, int ny, int nz, bool whole_rows) {
+  build([diag](long c) { return diag[c] > 0; }, nx, ny, nz, whole_rows);
+}
+
+void ActiveRows::from_mask(const unsigned char* mask, int nx, int ny, int nz, bool whole_rows) {
+  build([mask](long c) { return mask[c] != 0; }, nx, ny, nz, whole_rows);
+}
+
+void ActiveRows::mark_parents(unsigned char* mask) const {
+  const long cnx = (nx_ + 1) / 2, cny = (ny_ + 1) / 2;
+  for (int r = 0; r < rows(); ++r) {
+    const int j = r % ny_, k = r / ny_;
+    unsigned char* m = mask + cnx * (j / 2 + cny * (k / 2));
+    for (int q = begin(r); q < end(r); ++q)
+      for (int i = lo(q); i < hi(q); ++i) m[i / 2] = 1;
+  }
+}
+
+template <class Active>
+void ActiveRows::build(Active active, int nx, int ny, int nz, bool whole_rows) {
   const int rows = ny * nz;
   off_.assign(1, 0);
   lo_.clear();
   hi_.clear();
   for (int r = 0; r < rows; ++r) {
-    const double* d = diag + static_cast<long>(nx) * r;
+    const long c0 = static_cast<long>(nx) * r;
     int i = 0;
     while (i < nx) {
-      while (i < nx && !(d[i] > 0)) ++i;
+      while (i < nx && !active(c0 + i)) ++i;
       if (i == nx) break;
       const int a = i;
-      while (i < nx && d[i] > 0) ++i;
+      while (i < nx && active(c0 + i)) ++i;
       if (whole_rows) {
         lo_.push_back(0), hi_.push_back(nx);
         break;
@@ -41,6 +60,7 @@ void ActiveRows::from_diag(const double* diag, int nx, int ny, int nz, bool whol
 }
 
 void ActiveRows::finish(int nx, int ny, int nz) {
+  nx_ = nx, ny_ = ny, nz_ = nz;
   const int rows = ny * nz;
   row_work_.assign(rows + 1, 0);
   cells_ = 0;
@@ -67,7 +87,6 @@ void ActiveRows::finish(int nx, int ny, int nz) {
       const long R = J + long(cny) * K;
       coarse_work_[R + 1] = coarse_work_[R] + w;
     }
-  (void)nx;
 }
 
 // Items [a, b) for thread t: the first item whose prefix reaches t/nth of the total, up to

@@ -33,6 +33,15 @@ class ActiveRows {
   // The cells with diag > 0 (diag: nx ny nz values, x fastest). whole_rows: a row with an
   // active cell is the single segment [0, nx) (a periodic x axis joins its two ends).
   void from_diag(const double* diag, int nx, int ny, int nz, bool whole_rows);
+  // The cells with mask != 0, likewise.
+  void from_mask(const unsigned char* mask, int nx, int ny, int nz, bool whole_rows);
+  // Marks in mask (of the grid coarsened by 2 per axis, ceil(n/2) cells) every coarse cell with
+  // a fine cell inside a segment.
+  void mark_parents(unsigned char* mask) const;
+  // The same segments on the same grid.
+  bool operator==(const ActiveRows& o) const {
+    return nx_ == o.nx_ && ny_ == o.ny_ && nz_ == o.nz_ && off_ == o.off_ && lo_ == o.lo_ && hi_ == o.hi_;
+  }
 
   int rows() const { return static_cast<int>(off_.size()) - 1; }
   int begin(int r) const { return off_[r]; }
@@ -51,12 +60,15 @@ class ActiveRows {
   void share_coarse(int t, int nth, int& r0, int& r1) const { split(coarse_work_, t, nth, r0, r1); }
 
  private:
+  template <class Active>
+  void build(Active active, int nx, int ny, int nz, bool whole_rows);
   void finish(int nx, int ny, int nz);
   static void split(const std::vector<long>& prefix, int t, int nth, int& a, int& b);
 
   std::vector<int> off_{0}, lo_, hi_;
   std::vector<long> row_work_{0}, plane_work_{0}, coarse_work_{0};  // prefix sums
   long cells_ = 0;
+  int nx_ = 0, ny_ = 0, nz_ = 0;
 };
 
 }  // namespace cgdem::pressure

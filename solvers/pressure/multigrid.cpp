@@ -49,8 +49,8 @@ bool can_coarsen(const GridSpec& g) {
 }  // namespace
 
 MultigridPreconditioner::MultigridPreconditioner(const GridSpec& fine, int nu, Precision prec, Cycle cycle,
-                                                 double omega)
-    : nu_(nu), precision_(prec), cycle_(cycle), omega_(omega) {
+                                                 double omega, bool skip_blocked)
+    : nu_(nu), precision_(prec), cycle_(cycle), omega_(omega), skip_blocked_(skip_blocked) {
   grids_.push_back(fine);
   while (can_coarsen(grids_.back())) {
     GridSpec c = grids_.back();
@@ -92,9 +92,26 @@ void MultigridPreconditioner::setup(const Poisson7& op) {
     coarse_ = std::make_unique<CholmodFactor>(*lv_.back().op);
   if (precision_ == Precision::Single) {
     scale_ = stencil32_scale(op);
-    // The finest level visits only the cells with D > 0 (stencil32.hpp); apply() writes z = 0
-    // on the others.
-    for (size_t l = 0; l < lv_.size(); ++l) lv_[l].s32.set(*lv_[l].op, scale_, omega_, l == 0 && lv_.size() > 1);
+    // Skipping (stencil32.hpp): the finest level visits op.active() (D > 0; apply() writes z = 0
+    // on the other cells), each coarser level but the coarsest (solved whole) the parents of
+    // the cells the level below visits. A coarse cell with D > 0 has a fine child with D > 0,
+    // and one left out has b = 0 (its children's residuals were left out). These sets follow
+    // from the finest one alone: rebuilt when it changes.
+    const size_t L = lv_.size();
+    const bool skip = skip_blocked_ && L > 1;
+    if (skip && !(fine_seen_ == op.active())) {
+      for (size_t l = 1; l + 1 < L; ++l) {
+        const GridSpec& g = grids_[l];
+        std::vector<unsigned char> mask(g.cells(), 0);
+        (l == 1 ? op.active() : lv_[l - 1].act).mark_parents(mask.data());
+        lv_[l].act.from_mask(mask.data(), g.nx, g.ny, g.nz, g.bc[0] == Boundary::Periodic);
+      }
+      fine_seen_ = op.active();
+    }
+    for (size_t l = 0; l < L; ++l) {
+      const ActiveRows* act = !skip || l + 1 == L ? nullptr : l == 0 ? &op.active() : &lv_[l].act;
+      lv_[l].s32.set(*lv_[l].op, scale_, omega_, act);
+    }
   }
 }
 

@@ -40,13 +40,17 @@ class MultigridPreconditioner : public Preconditioner {
   enum class Cycle { V, W };
   // omega: relaxation factor of the red-black smoother (1: Gauss-Seidel; the same in every
   // half-sweep, so the cycle stays symmetric).
+  // skip_blocked (Single): the cycle visits only the cells it needs (below; false: every cell,
+  // the same z on the cells with D > 0, for the tests).
   explicit MultigridPreconditioner(const GridSpec& fine, int nu = 1, Precision prec = Precision::Single,
-                                   Cycle cycle = Cycle::V, double omega = 1.0);
+                                   Cycle cycle = Cycle::V, double omega = 1.0, bool skip_blocked = true);
   ~MultigridPreconditioner() override;
   void setup(const Poisson7& op) override;
   void apply(const double* r, double* z) override;
   // The single-precision cycle on more than one level skips those cells (stencil32.hpp).
-  bool zero_outside_active() const override { return precision_ == Precision::Single && levels() > 1; }
+  bool zero_outside_active() const override {
+    return skip_blocked_ && precision_ == Precision::Single && levels() > 1;
+  }
   int levels() const { return static_cast<int>(grids_.size()); }
 
  private:
@@ -55,6 +59,7 @@ class MultigridPreconditioner : public Preconditioner {
     const Poisson7* op = nullptr;
     std::vector<double> b, x, r;
     Stencil32 s32;              // Single: the float operator (scaled by scale_)
+    ActiveRows act;             // Single, coarse levels: the cells the cycle visits
     std::vector<float> bf, xf;  // Single: right-hand side and iterate
   };
   // One cycle on level l (V or W, cycle_); from_zero: x = 0 on entry (else the current x).
@@ -68,6 +73,8 @@ class MultigridPreconditioner : public Preconditioner {
   Precision precision_;
   Cycle cycle_;
   double omega_;
+  bool skip_blocked_;
+  ActiveRows fine_seen_;  // the finest level's segments that lv_[l].act were derived from
   double scale_ = 1;  // Single: the float operators are scale_ A
   const double* b0_ = nullptr;  // level 0: the caller's r and z
   double* x0_ = nullptr;

@@ -21,11 +21,15 @@ double stencil32_scale(const Poisson7& op) {
   return std::ldexp(1.0, -static_cast<int>(std::lround(std::log2(m))));
 }
 
-void Stencil32::set(const Poisson7& op, double scale, double omega, bool active_only) {
+void Stencil32::set(const Poisson7& op, double scale, double omega, const ActiveRows* active) {
   const bool resized = g_.nx != op.grid().nx || g_.ny != op.grid().ny || g_.nz != op.grid().nz;
   g_ = op.grid();
-  if (active_only) act_ = op.active();
-  else if (resized || act_.rows() != g_.ny * g_.nz) act_.all(g_.nx, g_.ny, g_.nz);
+  if (active) {
+    if (active->rows() != g_.ny * g_.nz) throw Error("pressure: active cells of another grid");
+    act_ = *active;
+  } else if (resized || act_.rows() != g_.ny * g_.nz || act_.cells() != n()) {
+    act_.all(g_.nx, g_.ny, g_.nz);
+  }
   px_ = op.periodic(0), py_ = op.periodic(1), pz_ = op.periodic(2);
   auto copy = [scale](const std::vector<double>& in, std::vector<float>& out) {
     out.resize(in.size());

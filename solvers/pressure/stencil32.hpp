@@ -21,15 +21,17 @@
 // Restriction of the residual R (b - A x), R = P^T/8 (2x2x2 children; fewer at an odd edge),
 // is computed row by row without storing b - A x.
 //
-// Skipping blocked cells (set(..., active_only = true), the multigrid's finest level): every
-// loop visits only the segments of op.active() (cells with D > 0, active_rows.hpp). A cell
-// left out has D = 0 and no open face, so what it holds reaches its neighbours only through
-// weights of 0; on the finest level its b is the PCG residual there, which is 0 (the
-// right-hand side is projected, and (A x)_c = 0). Skipping it leaves x there unwritten and
-// drops its residual, 0, from the restriction: the other cells get the same values (up to the
-// sign of a zero). The caller must not read x there (MultigridPreconditioner writes z = 0).
-// Coarse levels do not skip: a coarse cell without open coarse faces can cover fine cells
-// that are connected inside it, and its x is prolonged to them.
+// Skipping blocked cells (set(..., active)): every loop visits only the segments of `active`
+// (active_rows.hpp), which must hold every cell with D > 0. A cell left out has D = 0 and no
+// open face, so what it holds reaches its neighbours only through weights of 0. It must also
+// have b = 0: on the finest level b is the PCG residual, which is 0 there (the right-hand side
+// is projected, and (A x)_c = 0); on a coarse level the multigrid leaves out only cells whose
+// fine cells were all left out (their restricted residual is then 0; a coarse cell without
+// open coarse faces can still cover fine cells connected inside it, and those it keeps).
+// Skipping such a cell leaves x there unwritten and drops its residual, 0, from the
+// restriction: the other cells get the same values (up to the sign of a zero). Nothing may
+// read x there (the prolongation below only reads the parents of visited cells; the
+// multigrid writes z = 0 there).
 #pragma once
 #include <vector>
 
@@ -41,8 +43,8 @@ class Stencil32 {
  public:
   // Copies op's weights and diagonal times `scale` in single precision; omega: the relaxation
   // factor of the smoother (1: plain Gauss-Seidel).
-  // active_only: visit only op.active()'s segments (above).
-  void set(const Poisson7& op, double scale, double omega = 1.0, bool active_only = false);
+  // active: the segments the loops visit (above; copied), nullptr: every cell.
+  void set(const Poisson7& op, double scale, double omega = 1.0, const ActiveRows* active = nullptr);
 
   // Two half-sweeps, colour `first` then 1 - first. zero_start: x is taken as 0 on entry and
   // need not be initialised (the first colour is then b_c / D_c).
@@ -54,7 +56,7 @@ class Stencil32 {
 
   long n() const { return g_.cells(); }
   const GridSpec& grid() const { return g_; }
-  // The rows' segments the loops visit (all cells unless set() was given active_only).
+  // The rows' segments the loops visit (all cells unless set() was given some).
   const ActiveRows& active() const { return act_; }
 
  private:
