@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -23,19 +24,25 @@ void check_size(const std::vector<double>& a, long want, const char* name) {
   if (static_cast<long>(a.size()) != want)
     throw Error(std::string("pressure: face coefficient array ") + name + " has " +
                 std::to_string(a.size()) + " entries, expected " + std::to_string(want));
-  for (double v : a)
-    if (!(v >= 0.0) || !std::isfinite(v))
-      throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
+  // Counted without an early exit, so that the loop vectorises (NaN fails both comparisons).
+  long bad = 0;
+  const double* v = a.data();
+  const double top = std::numeric_limits<double>::max();
+#pragma omp parallel for schedule(static) reduction(+ : bad) if (want >= kParallelMin)
+  for (long q = 0; q < want; ++q) bad += !(v[q] >= 0.0 && v[q] <= top);
+  if (bad) throw Error(std::string("pressure: face coefficient ") + name + " must be finite and >= 0");
 }
 
-// True when a and b have the same size and the same faces (or cells) with a value > 0.
+// True when a and b have the same size and the same faces (or cells) with a value > 0
+// (counted without an early exit, so that the loop vectorises).
 bool same_sign_pattern(const std::vector<double>& a, const std::vector<double>& b, bool par) {
   if (a.size() != b.size()) return false;
   const long m = static_cast<long>(a.size());
-  bool eq = true;
-#pragma omp parallel for schedule(static) reduction(&& : eq) if (par)
-  for (long q = 0; q < m; ++q) eq = eq && ((a[q] > 0) == (b[q] > 0));
-  return eq;
+  const double *x = a.data(), *y = b.data();
+  long differ = 0;
+#pragma omp parallel for schedule(static) reduction(+ : differ) if (par)
+  for (long q = 0; q < m; ++q) differ += (x[q] > 0) != (y[q] > 0);
+  return differ == 0;
 }
 
 // y = A x along one row without its periodic wrap (apply_rows adds that). Built for AVX-512,

@@ -250,6 +250,11 @@ TEST(PressureMethods, BadInputThrows) {
     auto neg = ay;
     neg[3] = -1.0;
     EXPECT_THROW(s->set_coefficients(ax, neg, az), cgdem::Error);
+    for (const double v : {std::nan(""), HUGE_VAL}) {  // not finite
+      auto nonfinite = az;
+      nonfinite[az.size() - 1] = v;
+      EXPECT_THROW(s->set_coefficients(ax, ay, nonfinite), cgdem::Error);
+    }
     s->set_coefficients(ax, ay, az);
     std::vector<double> short_rhs(rhs.size() - 1);
     EXPECT_THROW(s->solve(short_rhs, phi), cgdem::Error);
