@@ -43,7 +43,8 @@ std::vector<uint8_t> classify_cells(const MacGrid& g, const Field& eps, const Fi
 // One air region flooded from cell q0 through face neighbours (periodic axes wrap), depth
 // first from a stack: its volume, the part above z_split, its top, its cells and its volume
 // moment (summed in the order of the flood), whether it reaches an Open side and whether it
-// touches powder. Marks its cells in `seen`.
+// touches powder. Marks its cells in `seen`. Once the region reaches an Open side the sums
+// stop (the caller drops open regions; they are most of the air, the room above the shoe).
 struct Region {
   Bubble b;
   Vec3 moment{};
@@ -62,13 +63,15 @@ Region flood_region(const MacGrid& g, const Field& eps, const Field& alpha_cell,
   while (!stack.empty()) {
     const std::array<int, 3> q = stack.back();
     stack.pop_back();
-    const double v = (1.0 - alpha_cell(q[0], q[1], q[2])) * eps(q[0], q[1], q[2]) * cell_volume;
-    const Vec3 x = g.cell_centre(q[0], q[1], q[2]);
-    b.volume += v;
-    if (x.z > z_split) b.volume_above += v;
-    reg.moment += v * x;
-    b.z_top = std::max(b.z_top, x.z + 0.5 * g.dx);
     ++b.cells;
+    if (!reg.open) {  // a region open to the air outside is no bubble: its sums are not needed
+      const double v = (1.0 - alpha_cell(q[0], q[1], q[2])) * eps(q[0], q[1], q[2]) * cell_volume;
+      const Vec3 x = g.cell_centre(q[0], q[1], q[2]);
+      b.volume += v;
+      if (x.z > z_split) b.volume_above += v;
+      reg.moment += v * x;
+      b.z_top = std::max(b.z_top, x.z + 0.5 * g.dx);
+    }
     for (int d = 0; d < 3; ++d)
       for (int h = 0; h < 2; ++h) {
         std::array<int, 3> r = q;
