@@ -50,10 +50,11 @@ void Stencil32::set(const Poisson7& op, double scale, double omega, const Active
 }
 
 namespace {
-// The update of the cells i = first, first + 2, ... < end of one row, all with both x neighbours
-// in the row (1 <= first, end <= nx - 1), written without branches so that it vectorises (stride 2), in the
-// summation order of Poisson7::gs_row; id = omega/D (0 where D = 0: that cell is set to keep x),
-// keep = 1 - omega (0: the plain update, which does not read x_c).
+// The update of the cells i = first, first + 2, ... < end of one row, all with both x
+// neighbours in the row (1 <= first, end <= nx - 1), written without branches so that it
+// vectorises (stride 2), in the summation order of Poisson7::gs_row; id = omega/D (0 where
+// D = 0: that cell is set to keep x), keep = 1 - omega (0: the plain update, which does not
+// read x_c).
 // Compiled for AVX-512, AVX2 and the baseline; the arithmetic is the same IEEE float either way
 // (contraction is off for the whole file, above).
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void gs_interior(

@@ -6,11 +6,22 @@
 // e^3 ~ 20 (packed bed next to free air). rhs = a lap(phi) + grad(a).grad(phi), exact.
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "solvers/pressure/pressure_solver.hpp"
 
 namespace cgdem::pressure::test {
+
+// n values in [-1, 1) from a xorshift generator: the same on every machine.
+inline std::vector<double> noise(long n, std::uint64_t seed) {
+  std::vector<double> v(n);
+  for (auto& x : v) {
+    seed ^= seed << 13; seed ^= seed >> 7; seed ^= seed << 17;
+    x = 2.0 * double(seed >> 11) / double(1ull << 53) - 1.0;
+  }
+  return v;
+}
 
 struct Problem {
   GridSpec g;

@@ -20,15 +20,6 @@ using B = Boundary;
 
 namespace {
 
-std::vector<double> noise(long n, std::uint64_t seed) {
-  std::vector<double> v(n);
-  for (auto& x : v) {
-    seed ^= seed << 13; seed ^= seed >> 7; seed ^= seed << 17;
-    x = 2.0 * double(seed >> 11) / double(1ull << 53) - 1.0;
-  }
-  return v;
-}
-
 // Blocks every face of the solid cells: a table (k < nz/3) with a hole, a shoe (walls around a
 // cavity) above it, and every 97th cell.
 void add_solids(test::Problem& p) {
@@ -129,7 +120,7 @@ TEST(ActiveRows, SkippingBlockedCellsChangesNoOtherValue) {
     if (!periodic_x) EXPECT_GT(skipped, n / 4);
 
     // A x against the row formula (the same order of terms), every cell.
-    const auto x = noise(n, 99);
+    const auto x = test::noise(n, 99);
     std::vector<double> y(n, 7.0), r(n, 7.0);
     op.apply(x.data(), y.data());
     op.residual(p.rhs.data(), x.data(), r.data());
@@ -175,7 +166,7 @@ TEST(ActiveRows, SkippingBlockedCellsChangesNoOtherValue) {
       skip.set(op, scale, omega, &op.active());
       EXPECT_EQ(full.active().cells(), n);
       std::vector<float> b(n), x0(n), xc(cg.cells());
-      const auto nb = noise(n, 5), nx0 = noise(n, 6), nxc = noise(cg.cells(), 8);
+      const auto nb = test::noise(n, 5), nx0 = test::noise(n, 6), nxc = test::noise(cg.cells(), 8);
       for (long c = 0; c < n; ++c) b[c] = op.diag()[c] > 0 ? float(nb[c]) : 0.0f, x0[c] = float(nx0[c]);
       for (long c = 0; c < cg.cells(); ++c) xc[c] = float(nxc[c]);
       std::vector<float> first_bc;
@@ -211,7 +202,7 @@ TEST(ActiveRows, SkippingBlockedCellsChangesNoOtherValue) {
                                1.2);
     mg.setup(op);
     ASSERT_GT(mg.levels(), 2);
-    auto rr = noise(n, 1234);
+    auto rr = test::noise(n, 1234);
     for (long c = 0; c < n; ++c)
       if (!(op.diag()[c] > 0)) rr[c] = 0;
     std::vector<double> z(n, 5.0);
@@ -279,7 +270,7 @@ TEST(ActiveRows, SundialsPcgOnTheSegmentsIsThePcgOnEveryCell) {
     for (const bool zero_guess : {true, false}) {
       std::vector<double> xs(n, 0.0), xa(n, 0.0);
       if (!zero_guess) {
-        const auto g = noise(n, 31);
+        const auto g = test::noise(n, 31);
         for (long c = 0; c < n; ++c) xs[c] = xa[c] = 0.01 * g[c];
       }
       const auto rs = seg.solve(b.data(), xs.data(), tol, 200, zero_guess);

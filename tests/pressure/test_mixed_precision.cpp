@@ -16,14 +16,6 @@ using B = Boundary;
 using Mg = MultigridPreconditioner;
 
 namespace {
-std::vector<double> noise(long n, std::uint64_t seed) {
-  std::vector<double> v(n);
-  for (auto& x : v) {
-    seed ^= seed << 13; seed ^= seed >> 7; seed ^= seed << 17;
-    x = 2.0 * double(seed >> 11) / double(1ull << 53) - 1.0;
-  }
-  return v;
-}
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0;
   for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
@@ -50,7 +42,7 @@ void compare(const char* name, std::array<B, 6> bc, int nx, int ny, int nz, doub
   d.setup(op);
   ASSERT_GT(s.levels(), cycle == Mg::Cycle::W ? 2 : 1);  // a W-cycle differs from a V-cycle on 3 levels
   const long n = op.n();
-  auto r = noise(n, 12345), q = noise(n, 777);
+  auto r = test::noise(n, 12345), q = test::noise(n, 777);
   std::vector<double> zs(n), zd(n), ws(n);
   s.apply(r.data(), zs.data());
   d.apply(r.data(), zd.data());
