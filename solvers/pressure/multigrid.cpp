@@ -8,33 +8,41 @@
 namespace cgdem::pressure {
 
 namespace {
-// Coarse face coefficients normal to `axis`: mean of the fine faces each coarse face covers.
+// Coarse face coefficients normal to `axis`: mean of the fine faces each coarse face covers
+// (the fine face plane 2C along the axis, capped at the last one; 2 x 2 fine faces across it,
+// fewer at an odd edge), summed in the order k, j, i.
 std::vector<double> coarsen_faces(const GridSpec& f, const GridSpec& c, const std::vector<double>& a, int axis) {
   const int nf[3] = {f.nx, f.ny, f.nz}, nc[3] = {c.nx, c.ny, c.nz};
   long ef[3] = {nf[0], nf[1], nf[2]}, ec[3] = {nc[0], nc[1], nc[2]};
   ef[axis] += 1;
   ec[axis] += 1;
   std::vector<double> out(ec[0] * ec[1] * ec[2]);
+  // The fine indices a coarse index C covers along axis d: one plane, or 2C and 2C + 1.
+  auto range = [&](int d, long C, long& lo, long& hi) {
+    if (d == axis) lo = hi = std::min<long>(2 * C, nf[d]);
+    else lo = 2 * C, hi = std::min<long>(2 * C + 1, nf[d] - 1);
+  };
 #pragma omp parallel for collapse(2) schedule(static) if (long(out.size()) >= kParallelMin)
   for (long K = 0; K < ec[2]; ++K)
-    for (long J = 0; J < ec[1]; ++J)
+    for (long J = 0; J < ec[1]; ++J) {
+      long k0, k1, j0, j1;
+      range(2, K, k0, k1);
+      range(1, J, j0, j1);
+      double* o = out.data() + ec[0] * (J + ec[1] * K);
       for (long I = 0; I < ec[0]; ++I) {
-        const long C[3] = {I, J, K};
-        long lo[3], hi[3];
-        for (int d = 0; d < 3; ++d) {
-          if (d == axis) lo[d] = hi[d] = std::min<long>(2 * C[d], nf[d]);
-          else { lo[d] = 2 * C[d]; hi[d] = std::min<long>(2 * C[d] + 1, nf[d] - 1); }
-        }
+        long i0, i1;
+        range(0, I, i0, i1);
+        const int cnt = int((k1 - k0 + 1) * (j1 - j0 + 1) * (i1 - i0 + 1));
         double s = 0;
-        int cnt = 0;
-        for (long k = lo[2]; k <= hi[2]; ++k)
-          for (long j = lo[1]; j <= hi[1]; ++j)
-            for (long i = lo[0]; i <= hi[0]; ++i) {
-              s += a[i + ef[0] * (j + ef[1] * k)];
-              ++cnt;
-            }
-        out[I + ec[0] * (J + ec[1] * K)] = s / cnt;
+        for (long k = k0; k <= k1; ++k)
+          for (long j = j0; j <= j1; ++j) {
+            const double* row = a.data() + ef[0] * (j + ef[1] * k);
+            s += row[i0];
+            if (i1 > i0) s += row[i1];
+          }
+        o[I] = s / cnt;
       }
+    }
   return out;
 }
 
