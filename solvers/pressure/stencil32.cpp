@@ -128,10 +128,6 @@ void Stencil32::gs_row(const float* b, float* x, int j, int k, int color, Mode m
   }
 }
 
-void Stencil32::gs_plane(const float* b, float* x, int k, int color, Mode mode) const {
-  for (int j = 0; j < g_.ny; ++j) gs_row(b, x, j, k, color, mode);
-}
-
 // Rows shared by active cells between the threads (active_rows.hpp); each row depends only
 // on cells of the other colour, so the split does not change the result.
 void Stencil32::gs_color(const float* b, float* x, int color, Mode mode) const {
@@ -161,7 +157,9 @@ void Stencil32::gs_pair(const float* b, float* x, int first, bool zero_start) co
     gs_color(b, x, second, m2);
     return;
   }
-  auto plane_sweep = [&](int k, int color, Mode m) { gs_plane(b, x, k, color, m); };
+  auto plane_sweep = [&](int k, int color, Mode m) {
+    for (int j = 0; j < ny; ++j) gs_row(b, x, j, k, color, m);
+  };
   // Each thread's planes, balanced by active cells: any split of the planes gives the same
   // result (Poisson7::gauss_seidel_pair).
 #pragma omp parallel if (plane * nz >= kParallelMin)

@@ -65,7 +65,6 @@ class Stencil32 {
   // that pair (x = 0 around it: x_c = b_c omega/D_c).
   enum class Mode { kNormal, kFromZero, kZeroFirst };
   void gs_row(const float* b, float* x, int j, int k, int color, Mode mode) const;
-  void gs_plane(const float* b, float* x, int k, int color, Mode mode) const;
   void gs_color(const float* b, float* x, int color, Mode mode) const;
   void residual_row(const float* b, const float* x, int j, int k, int lo, int hi, float* r) const;
 
