@@ -3,6 +3,7 @@
 #include "solvers/fluid/fluid_solver.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +86,8 @@ void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces&
     FaceRange r = active_range(g_, params_.bc, d);
     const Field& fe = src.f_explicit[d];
     Field& Rd = R[d];
+    const RowSpans* spans = spans_of(d);
+    const long nj = r[1][1] - r[1][0];
 #pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
     for (int k = -kGhost; k < Rd.nk() + kGhost; ++k)
       for (int j = -kGhost; j < Rd.nj() + kGhost; ++j) {
@@ -95,16 +98,23 @@ void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces&
           std::fill(out, out + n, 0.0);
           continue;
         }
+        // With spans, R is read (by the predictor) on the spans alone.
+        int i_lo = r[0][0], i_hi = r[0][1], q0 = 0, q1 = n;
+        if (spans) {
+          const long q = (j - r[1][0]) + nj * (k - r[2][0]);
+          i_lo = spans->lo[q], i_hi = spans->hi[q], q0 = i_lo + kGhost, q1 = i_hi + kGhost;
+        }
         const double* e = E[d].data() + E[d].index(-kGhost, j, k);
         const double* f = fe.empty() ? nullptr : fe.data() + fe.index(-kGhost, j, k);
-        for (int q = 0; q < n; ++q) {
+        for (int q = q0; q < q1; ++q) {
           const int i = q - kGhost;
-          const bool active = i >= r[0][0] && i < r[0][1];
+          const bool active = i >= i_lo && i < i_hi;
           out[q] = active ? e[q] * params_.rho * params_.gravity[d] + (f ? f[q] : 0.0)  // eq. (13) eps rho g
                           : 0.0;
         }
       }
-    add_momentum_terms(g_, d, true, params_.advection, params_.rho, params_.mu, vel, ef, eps_cell, r, R[d]);
+    add_momentum_terms(g_, d, true, params_.advection, params_.rho, params_.mu, vel, ef, eps_cell, r, R[d],
+                       spans);
   }
 }
 
@@ -118,25 +128,39 @@ void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1,
     FaceRange r = active_range(g_, params_.bc, d);
     const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d], &u = s.vel(d);
     const Field &K = src.K[d], &Kv = src.Kv[d];
+    const RowSpans* spans = spans_of(d);
+    const long nj = r[1][1] - r[1][0];
     // All face fields of component d share one layout: one offset per row serves them all.
-#pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
-    for (int k = r[2][0]; k < r[2][1]; ++k)
-      for (int j = r[1][0]; j < r[1][1]; ++j) {
-        const long o = u.index(0, j, k);
-        const double *ur = u.data() + o, *eo = E_old_[d].data() + o, *en = E_new_[d].data() + o;
-        const double *r0 = R0[d].data() + o, *r1 = R1 ? (*R1)[d].data() + o : nullptr;
-        const double *kr = K.empty() ? nullptr : K.data() + o, *kv = Kv.empty() ? nullptr : Kv.data() + o;
-        const double *ar = al.data() + o, *br = ub.data() + o;
-        double* out = ustar[d].data() + o;
-        for (int i = r[0][0]; i < r[0][1]; ++i) {
-          const double Kf = kr ? kr[i] : 0.0;
-          const double Rf = r1 ? 0.5 * (r0[i] + r1[i]) : r0[i];
-          const double num = eo[i] * rho * ur[i] / dt + Rf + (kv ? kv[i] : 0.0);
-          const double u_hat = num / (en[i] * rho / dt + Kf);  // eq. (13), K implicit
-          const double a = ar[i];
-          out[i] = (1 - a) * u_hat + a * br[i];  // eqs. (18), (20)
+#pragma omp parallel if (g_.cells() > kOmpMinWork)
+    {
+      const auto [ka, kb] =
+          plane_chunk(spans, r[2][0], r[2][1] - r[2][0], omp_get_thread_num(), omp_get_num_threads());
+      for (int k = ka; k < kb; ++k)
+        for (int j = r[1][0]; j < r[1][1]; ++j) {
+          const long o = u.index(0, j, k);
+          int i_lo = r[0][0], i_hi = r[0][1];
+          if (spans) {  // alpha = 1 outside the span: u* = U_B
+            const long q = (j - r[1][0]) + nj * (k - r[2][0]);
+            i_lo = spans->lo[q], i_hi = spans->hi[q];
+            const double* b = ub.data() + o;
+            std::copy(b + r[0][0], b + i_lo, ustar[d].data() + o + r[0][0]);
+            std::copy(b + i_hi, b + r[0][1], ustar[d].data() + o + i_hi);
+          }
+          const double *ur = u.data() + o, *eo = E_old_[d].data() + o, *en = E_new_[d].data() + o;
+          const double *r0 = R0[d].data() + o, *r1 = R1 ? (*R1)[d].data() + o : nullptr;
+          const double *kr = K.empty() ? nullptr : K.data() + o, *kv = Kv.empty() ? nullptr : Kv.data() + o;
+          const double *ar = al.data() + o, *br = ub.data() + o;
+          double* out = ustar[d].data() + o;
+          for (int i = i_lo; i < i_hi; ++i) {
+            const double Kf = kr ? kr[i] : 0.0;
+            const double Rf = r1 ? 0.5 * (r0[i] + r1[i]) : r0[i];
+            const double num = eo[i] * rho * ur[i] / dt + Rf + (kv ? kv[i] : 0.0);
+            const double u_hat = num / (en[i] * rho / dt + Kf);  // eq. (13), K implicit
+            const double a = ar[i];
+            out[i] = (1 - a) * u_hat + a * br[i];  // eqs. (18), (20)
+          }
         }
-      }
+    }
     sync_->fill_velocity_component(d, ustar[d]);  // periodic images, wall faces, cut faces
   }
 }
@@ -201,7 +225,55 @@ bool FluidSolver::update_walls(const geometry::Scene::Frame& frame) {
   sync_->copy_ghosts(ibm_.alpha_cell, kCells);
   for (int d = 0; d < 3; ++d) sync_->copy_ghosts(ibm_.alpha_face[d], d);
   ibm_.any_solid = sync_->any(ibm_.any_solid);
+  mark_open_spans();
   return true;
+}
+
+void FluidSolver::mark_open_spans() {
+  for (int d = 0; d < 3; ++d) {
+    const FaceRange r = active_range(g_, params_.bc, d);
+    const long nj = r[1][1] - r[1][0], nk = r[2][1] - r[2][0], rows = std::max(0L, nj * nk);
+    span_lo_[d].assign(static_cast<size_t>(rows), r[0][0]);
+    span_hi_[d].assign(static_cast<size_t>(rows), r[0][1]);
+    if (!ibm_.any_solid) continue;
+    const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d];
+#pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
+    for (long q = 0; q < rows; ++q) {
+      const int j = r[1][0] + static_cast<int>(q % nj), k = r[2][0] + static_cast<int>(q / nj);
+      const double *a = al.data() + al.index(0, j, k), *b = ub.data() + ub.index(0, j, k);
+      auto inside = [&](int i) { return a[i] == 1.0 && !(b[i] == 0 && std::signbit(b[i])); };
+      int lo = r[0][0], hi = r[0][1];
+      while (lo < hi && inside(lo)) ++lo;
+      while (hi > lo && inside(hi - 1)) --hi;
+      span_lo_[d][q] = lo, span_hi_[d][q] = lo < hi ? hi : lo;
+    }
+  }
+  for (int d = 0; d < 3; ++d) {  // the work per plane, summed
+    const FaceRange r = active_range(g_, params_.bc, d);
+    const long nj = r[1][1] - r[1][0], nk = std::max(0, r[2][1] - r[2][0]);
+    span_work_[d].assign(static_cast<size_t>(nk) + 1, 0);
+    for (long k = 0; k < nk; ++k) {
+      long w = 0;
+      for (long j = 0; j < nj; ++j) {
+        const long open = span_hi_[d][j + nj * k] - span_lo_[d][j + nj * k];
+        w += open + (r[0][1] - r[0][0] - open) / kCopyShare + kRowWork;
+      }
+      span_work_[d][k + 1] = span_work_[d][k] + w;
+    }
+  }
+}
+
+const RowSpans* FluidSolver::spans_of(int d) const {
+  if (!skip_walls_ || span_lo_[d].empty()) return nullptr;
+  spans_[d] = {span_lo_[d].data(), span_hi_[d].data(), span_work_[d].data()};
+  return &spans_[d];
+}
+
+long FluidSolver::faces_in_walls(int d) const {
+  const FaceRange r = active_range(g_, params_.bc, d);
+  long n = 0;
+  for (size_t q = 0; q < span_lo_[d].size(); ++q) n += (r[0][1] - r[0][0]) - (span_hi_[d][q] - span_lo_[d][q]);
+  return n;
 }
 
 // The step of fluid_solver.hpp: IBM fractions at t^{n+1}, explicit terms, predictor,

@@ -31,6 +31,7 @@
 #include "fluid/field_sync.hpp"
 #include "fluid/fluid_state.hpp"
 #include "fluid/ibm.hpp"
+#include "fluid/momentum_terms.hpp"
 #include "geometry/scene.hpp"
 #include "solvers/pressure/pressure_solver.hpp"
 
@@ -73,6 +74,12 @@ class FluidSolver {
   // frame earlier (the void fraction, the kernel masks) calls it first and reads ibm(), so
   // the fractions are computed once per step.
   bool update_walls(const geometry::Scene::Frame& frame);
+  // Whether the explicit terms and the predictor pass over the faces at the ends of each row
+  // that lie inside walls (on by default; the results are the same bits either way, see
+  // spans_).
+  void set_skip_walls(bool on) { skip_walls_ = on; }
+  // Faces of component d that the explicit terms pass over (for the tests and the bench).
+  long faces_in_walls(int d) const;
   const PhaseTimers& timers() const { return timers_; }
   PhaseTimers& timers() { return timers_; }
 
@@ -89,6 +96,8 @@ class FluidSolver {
   void set_pressure_coefficients(const Sources& src, double dt);
   void check_inputs(const FluidState& s, const Sources& src, double dt);
   void step_statistics(const FluidState& s, const Sources& src, double dt, StepStats& st) const;
+  void mark_open_spans();
+  const RowSpans* spans_of(int d) const;
 
   MacGrid g_;
   FluidParams params_;
@@ -103,6 +112,16 @@ class FluidSolver {
   std::array<std::vector<double>, 3> next_;
   std::array<std::vector<double>, 3> corr_;  // c_f = a_f / E_f of the correction, pressure layout
   bool coeffs_set_ = false;
+  // Per component d and row (j, k) of its active faces (q = (j - lo_j) + n_j (k - lo_k)): the
+  // span [lo[q], hi[q]) from the first to the last face that is not wholly inside a wall.
+  // A face outside it has alpha = 1 and a wall velocity U_B that is not -0, and the predictor
+  // gives it (1 - 1) u_hat + 1 U_B = U_B whatever the finite u_hat (+-0 + U_B is U_B unless
+  // U_B = -0). So the predictor writes U_B there and the explicit terms are evaluated on the
+  // spans only. Set by update_walls whenever the fractions change.
+  std::array<std::vector<int>, 3> span_lo_, span_hi_;
+  std::array<std::vector<long>, 3> span_work_;  // RowSpans::work
+  mutable std::array<RowSpans, 3> spans_{};  // views of span_lo_, span_hi_ (spans_of)
+  bool skip_walls_ = true;
 };
 
 pressure::GridSpec pressure_grid(const MacGrid& g, const FluidParams& params);

@@ -7,6 +7,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -164,31 +165,59 @@ template <bool Adv, bool Visc>
 // x, y and z; simple loops that vectorize), then the divergence row. Built for the baseline
 // target, AVX2 and AVX-512 (the best one the processor has is called; no contraction, so
 // all three give the same bits). Adv / Visc: which parts are computed.
+// With spans, a row is evaluated over its span only. The lower y-fluxes of a row (the upper
+// ones of the row before) and its lower z-fluxes (its upper ones in the plane below) are
+// reused where that row or plane evaluated them, and evaluated afresh elsewhere in the span:
+// each flux is a function of its position alone, so either way it has the same bits.
 template <Advection S, int D, bool Adv, bool Visc>
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void sweep_planes(
-    const Kernel& K, const FaceRange& r, int ka, int kb, Field& rhs) {
-  const long i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1];
+    const Kernel& K, const FaceRange& r, int ka, int kb, Field& rhs, const RowSpans* spans) {
+  const long i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0];
   const long ni = i1 - i0, nj = j1 - j0;
-  // Flux buffers (advective a, viscous v): x along the row (slot 0 = face i0 - 1), y of the
-  // row below and of this row, z of the plane below (per row) and of this row.
+  // Flux buffers (advective a, viscous v), slot i - i0 for face i: x along the row (slot 0
+  // = face i0 - 1, so face i at slot i - i0 + 1), y of the row below and of this row, z of
+  // the plane below (per row) and of this row.
   std::vector<double> xa(ni + 1), xv(ni + 1), ya(ni), yv(ni), ya2(ni), yv2(ni), za(ni * nj), zv(ni * nj),
       za2(ni), zv2(ni);
   double *ya_lo = ya.data(), *ya_up = ya2.data(), *yv_lo = yv.data(), *yv_up = yv2.data();
+  // Where the buffers hold valid fluxes: ya_lo over [y_lo, y_hi) (of the row before); row
+  // j's z buffer over [z_lo[j], z_hi[j]) of plane z_k[j].
+  long y_lo = 0, y_hi = 0;
+  std::vector<long> z_lo(nj, 0), z_hi(nj, 0), z_k(nj, ka - 1);
+  // Fills `have` (valid over [h_lo, h_hi)) up to [lo, hi) with flux rows from `fill(a, b)`.
+  auto complete = [](long lo, long hi, long h_lo, long h_hi, auto&& fill) {
+    if (h_hi <= h_lo || h_hi <= lo || hi <= h_lo) return fill(lo, hi);
+    if (lo < h_lo) fill(lo, h_lo);
+    if (h_hi < hi) fill(h_hi, hi);
+  };
   for (int k = ka; k < kb; ++k) {
-    if (k == ka)
-      for (long j = j0; j < j1; ++j)
-        fluxes<S, D, Adv, Visc, 2>(K, i0, j, k - 1, ni, za.data() + (j - j0) * ni, zv.data() + (j - j0) * ni);
-    fluxes<S, D, Adv, Visc, 1>(K, i0, j0 - 1, k, ni, ya_lo, yv_lo);
     double* out = rhs.data() + rhs.index(0, 0, k);
+    y_lo = y_hi = 0;
     for (long j = j0; j < j1; ++j) {
-      fluxes<S, D, Adv, Visc, 0>(K, i0 - 1, j, k, ni + 1, xa.data(), xv.data());
-      fluxes<S, D, Adv, Visc, 1>(K, i0, j, k, ni, ya_up, yv_up);
-      fluxes<S, D, Adv, Visc, 2>(K, i0, j, k, ni, za2.data(), zv2.data());
-      divergence_row<Adv, Visc>(ni, K.inv_dx, xa.data(), ya_lo, ya_up, za.data() + (j - j0) * ni, za2.data(),
-                                xv.data(), yv_lo, yv_up, zv.data() + (j - j0) * ni, zv2.data(),
-                                out + rhs.stride(1) * j + i0);
+      const long q = (j - j0) + nj * (k - k0);
+      const long lo = spans ? spans->lo[q] : i0, hi = spans ? spans->hi[q] : i1, n = hi - lo, o = lo - i0;
+      if (n <= 0) {
+        y_lo = y_hi = 0;
+        continue;
+      }
+      double *za_lo = za.data() + (j - j0) * ni, *zv_lo = zv.data() + (j - j0) * ni;
+      const bool z_fresh = z_k[j - j0] == k - 1;
+      complete(lo, hi, z_fresh ? z_lo[j - j0] : 0, z_fresh ? z_hi[j - j0] : 0, [&](long a, long b) {
+        fluxes<S, D, Adv, Visc, 2>(K, a, j, k - 1, b - a, za_lo + (a - i0), zv_lo + (a - i0));
+      });
+      complete(lo, hi, y_lo, y_hi, [&](long a, long b) {
+        fluxes<S, D, Adv, Visc, 1>(K, a, j - 1, k, b - a, ya_lo + (a - i0), yv_lo + (a - i0));
+      });
+      fluxes<S, D, Adv, Visc, 0>(K, lo - 1, j, k, n + 1, xa.data() + o, xv.data() + o);
+      fluxes<S, D, Adv, Visc, 1>(K, lo, j, k, n, ya_up + o, yv_up + o);
+      fluxes<S, D, Adv, Visc, 2>(K, lo, j, k, n, za2.data() + o, zv2.data() + o);
+      divergence_row<Adv, Visc>(n, K.inv_dx, xa.data() + o, ya_lo + o, ya_up + o, za_lo + o, za2.data() + o,
+                                xv.data() + o, yv_lo + o, yv_up + o, zv_lo + o, zv2.data() + o,
+                                out + rhs.stride(1) * j + lo);
+      z_lo[j - j0] = lo, z_hi[j - j0] = hi, z_k[j - j0] = k;
       std::swap(ya_lo, ya_up);  // this row's upper y-fluxes are the next row's lower ones
       std::swap(yv_lo, yv_up);
+      y_lo = lo, y_hi = hi;
     }
   }
 }
@@ -198,20 +227,31 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
 // makes the target clones, so a loop written in the region itself would only be built for
 // the baseline target.
 template <Advection S, int D, bool Adv, bool Visc>
-void sweep(const Kernel& K, const FaceRange& r, Field& rhs) {
+void sweep(const Kernel& K, const FaceRange& r, Field& rhs, const RowSpans* spans) {
   const int i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0], k1 = r[2][1];
   if (i1 <= i0 || j1 <= j0 || k1 <= k0) return;
   const long ni = i1 - i0, nj = j1 - j0, nk = k1 - k0;
   const bool par = ni * nj * nk > kOmpMinWork;
 #pragma omp parallel if (par)
   {
-    const int nth = omp_get_num_threads(), tid = omp_get_thread_num();
-    const int ka = k0 + static_cast<int>(nk * tid / nth), kb = k0 + static_cast<int>(nk * (tid + 1) / nth);
-    if (ka < kb) sweep_planes<S, D, Adv, Visc>(K, r, ka, kb, rhs);
+    const auto [ka, kb] = plane_chunk(spans, k0, static_cast<int>(nk), omp_get_thread_num(), omp_get_num_threads());
+    if (ka < kb) sweep_planes<S, D, Adv, Visc>(K, r, ka, kb, rhs, spans);
   }
 }
 
 }  // namespace
+
+std::array<int, 2> plane_chunk(const RowSpans* spans, int k0, int nk, int t, int nth) {
+  // The plane count before thread u's chunk: equal counts, or the first count whose work
+  // reaches the share of the threads before u.
+  auto bound = [&](int u) {
+    if (u >= nth) return nk;
+    if (!spans) return static_cast<int>(static_cast<long>(nk) * u / nth);
+    const long want = (spans->work[nk] * u + nth - 1) / nth;
+    return static_cast<int>(std::lower_bound(spans->work, spans->work + nk + 1, want) - spans->work);
+  };
+  return {k0 + bound(t), k0 + bound(t + 1)};
+}
 
 Advection advection_from_string(const std::string& name) {
   if (name == "upwind") return Advection::Upwind;
@@ -223,7 +263,7 @@ Advection advection_from_string(const std::string& name) {
 
 void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, double rho, double mu,
                         const std::array<const Field*, 3>& vel, const std::array<const Field*, 3>& eps_face,
-                        const Field& eps_cell, const FaceRange& range, Field& rhs) {
+                        const Field& eps_cell, const FaceRange& range, Field& rhs, const RowSpans* spans) {
   const bool visc = mu > 0;
   if (!advect && !visc) return;
   const Field& dummy = *vel[d];
@@ -239,9 +279,9 @@ void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, 
   // template arguments: strides, the e == d branch, the limiter and the part switches are
   // resolved at compile time (same arithmetic).
   auto run = [&]<Advection S, bool Adv, bool Visc>() {
-    if (d == 0) sweep<S, 0, Adv, Visc>(K, range, rhs);
-    else if (d == 1) sweep<S, 1, Adv, Visc>(K, range, rhs);
-    else sweep<S, 2, Adv, Visc>(K, range, rhs);
+    if (d == 0) sweep<S, 0, Adv, Visc>(K, range, rhs, spans);
+    else if (d == 1) sweep<S, 1, Adv, Visc>(K, range, rhs, spans);
+    else sweep<S, 2, Adv, Visc>(K, range, rhs, spans);
   };
   auto with_parts = [&]<Advection S>() {
     if (visc) run.template operator()<S, true, true>();

@@ -32,8 +32,8 @@
 // above (bitwise the same as evaluating each side separately). The planes are compiled for
 // the baseline target, AVX2 and AVX-512 (the best one available runs), all without
 // floating-point contraction, so all three give the same bits. OpenMP splits the k range
-// into contiguous chunks; each chunk first evaluates the z-fluxes of the plane below it, so
-// the result does not depend on the number of threads.
+// into contiguous chunks (of equal work when spans are given); each chunk evaluates the
+// z-fluxes of the plane below it, so the result does not depend on the number of threads.
 #pragma once
 #include <array>
 #include <string>
@@ -58,8 +58,27 @@ void add_viscous(const MacGrid& g, int d, double mu, const std::array<const Fiel
 // Both terms in one sweep: rhs = (rhs - [advection divergence]/dx) + [viscous divergence]/dx,
 // the same operations in the same order as add_advection followed by add_viscous.
 // `advect` / mu > 0 switch the two parts.
+// The faces of each row (j, k) of a range to evaluate: lo[q] <= i < hi[q], with q = (j - lo_j) +
+// n_j (k - lo_k) and range[0][0] <= lo[q] <= hi[q] <= range[0][1] (lo = hi: none).
+// work[m] (m = 0 .. n_k): the cost of the first m planes, by which the planes are shared
+// between threads (plane_chunk): per row, the faces in its span, those outside it divided by
+// kCopyShare (the predictor copies U_B there) and kRowWork.
+struct RowSpans {
+  const int *lo, *hi;
+  const long* work;
+};
+inline constexpr long kRowWork = 8, kCopyShare = 4;
+
+// Planes [first, second) of thread t of nth over the n_k planes from k0: contiguous chunks of
+// about equal work (spans->work), or of equal plane counts without spans.
+std::array<int, 2> plane_chunk(const RowSpans* spans, int k0, int nk, int t, int nth);
+
+// spans (optional): only those faces of each row are written; the others keep their value.
+// The fluxes a written face needs are evaluated whatever the spans, so the written faces get
+// the same bits as without spans.
 void add_momentum_terms(const MacGrid& g, int d, bool advect, Advection scheme, double rho, double mu,
                         const std::array<const Field*, 3>& vel, const std::array<const Field*, 3>& eps_face,
-                        const Field& eps_cell, const FaceRange& range, Field& rhs);
+                        const Field& eps_cell, const FaceRange& range, Field& rhs,
+                        const RowSpans* spans = nullptr);
 
 }  // namespace cgdem::fluid
