@@ -118,12 +118,20 @@ double box_fraction(const Scene::Frame& f, const std::vector<int>& parts, const 
   return sampled_fraction(f, parts, bounds, x, h, n);
 }
 
-// The parts of `all` whose bounds come within r of x.
-void candidates(const std::vector<int>& all, const std::vector<Aabb>& bounds, const Vec3& x, double r,
-                std::vector<int>& out, std::vector<Aabb>& out_b) {
+// The parts of `all` whose bounds come within r of x. Returns the least distance from x to
+// the bounds of the others (+inf if none).
+double candidates(const std::vector<int>& all, const std::vector<Aabb>& bounds, const Vec3& x, double r,
+                  std::vector<int>& out, std::vector<Aabb>& out_b) {
   out.clear(), out_b.clear();
-  for (size_t q = 0; q < all.size(); ++q)
-    if (bounds[q].distance(x) <= r) out.push_back(all[q]), out_b.push_back(bounds[q]);
+  double far = INFINITY;
+  for (size_t q = 0; q < all.size(); ++q) {
+    const double bd = bounds[q].distance(x);
+    if (bd <= r)
+      out.push_back(all[q]), out_b.push_back(bounds[q]);
+    else
+      far = std::min(far, bd);
+  }
+  return far;
 }
 
 // Fills the static cache: every box of every array against the static parts only.
@@ -209,6 +217,31 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
   for (int p : parts.fixed) fb.push_back(frame.part_bounds(p));
   const double h = 0.5 * g.dx, r = 0.5 * norm(Vec3{g.dx, g.dx, g.dx});
   bool any = c.any;
+  // The kept boxes (header): reset with the static cache, else the travel since the last call
+  // is added to the path. The round-off of phi and of the sums is far below eps.
+  int moving_body = -1;  // the one body the moving parts belong to (-1: several)
+  for (size_t q = 0; q < parts.moving.size(); ++q) {
+    const int b = scene.parts()[parts.moving[q]].body;
+    moving_body = q == 0 ? b : (b == moving_body ? b : -1);
+    if (moving_body < 0) break;
+  }
+  const bool keep = ibm.keep_far && !mb.empty();
+  if (!same_static || c.path_offsets.size() != frame.offset.size() || !keep) {
+    for (int a = 0; a < 4; ++a) {
+      const std::array<int, 3> e = box_extent(g, a);
+      c.kept_kind[a].assign(keep ? static_cast<size_t>(e[0]) * e[1] * e[2] : 0, 0);
+      c.kept_until[a].assign(c.kept_kind[a].size(), -INFINITY);
+    }
+    c.path = 0;
+  } else {
+    double step = 0;
+    for (size_t b = 0; b < frame.offset.size(); ++b)
+      if (!scene.bodies()[b].motion.is_static()) step = std::max(step, norm(frame.offset[b] - c.path_offsets[b]));
+    c.path += step;
+  }
+  c.path_offsets = frame.offset;
+  const double eps = 1e-9 * g.dx, h_d = 0.5 * norm(Vec3{2 * h, 2 * h, 2 * h});  // sure_fraction's half-diagonal
+  long kept = 0;
   if (!mb.empty()) {
     Aabb reg{mb[0].lo, mb[0].hi};
     for (const Aabb& b : mb) reg.lo = cmin(reg.lo, b.lo), reg.hi = cmax(reg.hi, b.hi);
@@ -223,23 +256,34 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
       ir[0][0] = std::max(ir[0][0], 0), ir[1][0] = std::max(ir[1][0], 0), ir[2][0] = std::max(ir[2][0], 0);
       Field& al_out = a == 0 ? ibm.alpha_cell : ibm.alpha_face[a - 1];
       const long work = long(ir[0][1] - ir[0][0]) * (ir[1][1] - ir[1][0]) * (ir[2][1] - ir[2][0]);
-#pragma omp parallel for schedule(dynamic) if (work > kOmpMinWork / 4) reduction(+ : sampled) reduction(|| : any)
+      unsigned char* kind = keep ? c.kept_kind[a].data() : nullptr;
+      double* until = keep ? c.kept_until[a].data() : nullptr;
+#pragma omp parallel for schedule(dynamic) if (work > kOmpMinWork / 4) reduction(+ : sampled, kept) reduction(|| : any)
       for (int k = ir[2][0]; k < ir[2][1]; ++k) {
         std::vector<int> cm, cs, call;
         std::vector<Aabb> cmb, csb, callb;
         for (int j = ir[1][0]; j < ir[1][1]; ++j)
           for (int i = ir[0][0]; i < ir[0][1]; ++i) {
-            const Vec3 x = box_centre(g, a, i, j, k);
             const size_t q = i + static_cast<size_t>(e[0]) * (j + static_cast<size_t>(e[1]) * k);
-            candidates(parts.moving, mb, x, r, cm, cmb);
+            if (kind && kind[q] != 0 && c.path <= until[q]) {  // the value stands (header)
+              ++kept;
+              if (kind[q] == 2) {
+                any = true;
+                if (a > 0) ibm.ub_face[a - 1](i, j, k) = frame.velocity[moving_body][a - 1];
+              }
+              continue;
+            }
+            const Vec3 x = box_centre(g, a, i, j, k);
+            const double far = candidates(parts.moving, mb, x, r, cm, cmb);
             double al;
             int which = c.nearest[a][q];
             double dist = c.phi[a](i, j, k);
+            double pm = INFINITY;  // phi of the moving parts within reach (+inf: none)
             if (cm.empty()) {
               al = c.alpha[a](i, j, k);  // no moving part within reach: the static value
             } else {
               int wm;
-              const double pm = nearest_of(frame, cm, x, wm);
+              pm = nearest_of(frame, cm, x, wm);
               const double pc = std::min(dist, pm);
               if (pm < dist || (pm == dist && wm < which)) which = wm, dist = pm;
               if (const double sure = sure_fraction(pc, h); sure >= 0) {
@@ -255,12 +299,23 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
             al_out(i, j, k) = al;
             if (al > 0) any = true;
             if (a > 0) ibm.ub_face[a - 1](i, j, k) = al > 0 ? frame.part_velocity(which)[a - 1] : 0.0;
+            if (!kind) continue;
+            // Its clearance: from every moving part (a lower bound of their phi: pm, and the
+            // bounds of the parts out of reach), or inside the one moving body.
+            const double phi_m = std::min(pm, far), static_phi = c.phi[a](i, j, k);
+            kind[q] = 0;
+            if (phi_m >= h_d + eps) {
+              kind[q] = 1, until[q] = c.path + (phi_m - h_d - eps);
+            } else if (moving_body >= 0 && pm <= -h_d - eps && pm < static_phi - eps) {
+              kind[q] = 2, until[q] = c.path + std::min(-pm - h_d - eps, static_phi - pm - eps);
+            }
           }
       }
     }
   }
   ibm.any_solid = any;
   ibm.sampled_faces = sampled;
+  ibm.kept_boxes = kept;
   return true;
 }
 

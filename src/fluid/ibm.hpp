@@ -20,6 +20,15 @@
 // a part's bounds contain it), so alpha is identical to a full recomputation; U_B is that of
 // the nearest part as before (identical when the parts' signed distances are exact, e.g.
 // boxes).
+// Inside the region, a box need not be evaluated while the moving bodies have travelled
+// less than its clearance since it was. A signed distance changes by at most the distance
+// a body moves (shape.hpp: |s| is the distance to the surface or a lower bound of it, so s
+// is 1-Lipschitz), so a box whose centre was phi_m >= h_d + c from every moving part (h_d its
+// half-diagonal) keeps phi_m >= h_d until they have travelled c: no sample of it can be in a
+// moving part, and its value is the static one. A box whose centre was phi_m <= -h_d - c
+// inside the one moving body, and nearer to it than to any static part by more than c,
+// stays alpha = 1 with that body's velocity. The travel is summed over the calls (the
+// largest displacement of a moving body at each), so motion back and forth is covered.
 #pragma once
 #include <array>
 #include <vector>
@@ -54,7 +63,16 @@ struct IbmFractions {
     bool valid = false;
     bool have_region = false;
     geometry::Aabb region;  // moving parts' bounds at the last call (world)
+    // Boxes whose value stands while the moving bodies travel little (see update_ibm):
+    // per box array, what the value is (0: none kept, 1: outside every moving part, the
+    // static value; 2: inside the one moving body) and up to which `path` it stands.
+    std::array<std::vector<unsigned char>, 4> kept_kind;
+    std::array<std::vector<double>, 4> kept_until;
+    double path = 0;                 // the moving bodies' travel summed over the calls [m]
+    std::vector<Vec3> path_offsets;  // the body offsets at the last call
   } cache;
+  bool keep_far = true;  // use kept_kind (false: evaluate every box of the region; tests)
+  long kept_boxes = 0;   // boxes of the region whose value was kept in the last update
 };
 
 // Recomputes the fractions for `frame` if the bodies have moved (or on first use).
