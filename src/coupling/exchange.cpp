@@ -1,6 +1,7 @@
 #include "coupling/exchange.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <utility>
 
 #include "fluid/boundary.hpp"
@@ -322,17 +323,22 @@ void Exchange::correct_parcels(const fluid::FluidState& air, const ParcelWeights
 
 template <class Coefficients>
 void Exchange::deposit_sources(const ParcelWeights& w, fluid::Sources& src, Coefficients coef) const {
-  for (int d = 0; d < 3; ++d) {
-    src.K[d] = fluid::make_face_field(g_, d);
-    src.Kv[d] = fluid::make_face_field(g_, d);
-  }
-  for (size_t i = 0; i < w.size(); ++i) {  // serial: fixed summation order
-    const auto [k, kv] = coef(i);
-    if (k == 0) continue;
-    for (int d = 0; d < 3; ++d) {
-      deposit(w.face[d][i], k, src.K[d]);
-      deposit(w.face[d][i], kv[d], src.Kv[d]);
-    }
+  // The coefficients first; then each of the six fields (K and Kv of each component) takes
+  // its deposits from one thread, parcel after parcel: every sum in a fixed order, so the
+  // fields are the same bits for any number of threads.
+  const long n = static_cast<long>(w.size());
+  std::vector<double> kc(n);
+  std::vector<Vec3> kvc(n);
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long i = 0; i < n; ++i) std::tie(kc[i], kvc[i]) = coef(static_cast<size_t>(i));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int task = 0; task < 6; ++task) {
+    const int d = task / 2;
+    const bool v = task % 2 == 1;
+    fluid::Field f = fluid::make_face_field(g_, d);
+    for (long i = 0; i < n; ++i)
+      if (kc[i] != 0) deposit(w.face[d][i], v ? kvc[i][d] : kc[i], f);
+    (v ? src.Kv[d] : src.K[d]) = std::move(f);
   }
   for (int d = 0; d < 3; ++d) {
     sync_periodic_face(d, periodic_, src.K[d]);
@@ -343,6 +349,7 @@ void Exchange::deposit_sources(const ParcelWeights& w, fluid::Sources& src, Coef
   // Per volume the packing fills: K/C_f, Kv/C_f where the capacity is below 1.
   for (int d = 0; d < 3; ++d) {
     const auto e = src.K[d].extent();
+#pragma omp parallel for schedule(static) if (static_cast<long>(e[0]) * e[1] * e[2] > fluid::kOmpMinWork)
     for (int k = 0; k < e[2]; ++k)
       for (int j = 0; j < e[1]; ++j)
         for (int i = 0; i < e[0]; ++i) {
