@@ -300,12 +300,14 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
             if (al > 0) any = true;
             if (a > 0) ibm.ub_face[a - 1](i, j, k) = al > 0 ? frame.part_velocity(which)[a - 1] : 0.0;
             if (!kind) continue;
-            // Its clearance: from every moving part (a lower bound of their phi: pm, and the
-            // bounds of the parts out of reach), or inside the one moving body.
-            const double phi_m = std::min(pm, far), static_phi = c.phi[a](i, j, k);
+            // Its clearance outside every moving part: the parts within reach stay h_d away
+            // (phi moves by at most the travel), the others out of reach (their bounds move by
+            // the travel; a CSG phi may be below the distance to the bounds, so the bounds'
+            // distance is not used as a phi). Or its clearance inside the one moving body.
+            const double static_phi = c.phi[a](i, j, k), clear = std::min(pm - h_d, far - r) - eps;
             kind[q] = 0;
-            if (phi_m >= h_d + eps) {
-              kind[q] = 1, until[q] = c.path + (phi_m - h_d - eps);
+            if (clear >= 0) {
+              kind[q] = 1, until[q] = c.path + clear;
             } else if (moving_body >= 0 && pm <= -h_d - eps && pm < static_phi - eps) {
               kind[q] = 2, until[q] = c.path + std::min(-pm - h_d - eps, static_phi - pm - eps);
             }

@@ -23,9 +23,11 @@
 // Inside the region, a box need not be evaluated while the moving bodies have travelled
 // less than its clearance since it was. A signed distance changes by at most the distance
 // a body moves (shape.hpp: |s| is the distance to the surface or a lower bound of it, so s
-// is 1-Lipschitz), so a box whose centre was phi_m >= h_d + c from every moving part (h_d its
-// half-diagonal) keeps phi_m >= h_d until they have travelled c: no sample of it can be in a
-// moving part, and its value is the static one. A box whose centre was phi_m <= -h_d - c
+// is 1-Lipschitz), so a box whose centre was phi_m >= h_d + c from the moving parts within
+// reach (h_d its half-diagonal), and whose other moving parts' bounds were farther than
+// h_d + c, keeps both until they have travelled c: no sample of it can be in a moving part,
+// no moving part is nearer than a static one where it has solid, and its value is the
+// static one. A box whose centre was phi_m <= -h_d - c
 // inside the one moving body, and nearer to it than to any static part by more than c,
 // stays alpha = 1 with that body's velocity. The travel is summed over the calls (the
 // largest displacement of a moving body at each), so motion back and forth is covered.
