@@ -226,7 +226,9 @@ bool update_ibm(const MacGrid& g, const geometry::Scene::Frame& frame, int sampl
     if (moving_body < 0) break;
   }
   const bool keep = ibm.keep_far && !mb.empty();
-  if (!same_static || c.path_offsets.size() != frame.offset.size() || !keep) {
+  const std::array<int, 3> ec = box_extent(g, 0);
+  const bool sized = c.kept_kind[0].size() == static_cast<size_t>(ec[0]) * ec[1] * ec[2];
+  if (!same_static || c.path_offsets.size() != frame.offset.size() || !keep || !sized) {
     for (int a = 0; a < 4; ++a) {
       const std::array<int, 3> e = box_extent(g, a);
       c.kept_kind[a].assign(keep ? static_cast<size_t>(e[0]) * e[1] * e[2] : 0, 0);

@@ -185,6 +185,14 @@ TEST(IbmCache, KeptBoxesEqualEvaluatingEveryBox) {
                 "evaluating every box: at most %ld, from the full evaluation: at most %ld (tol 0)\n",
                 c.name, c.times.size(), kept_total, kept.kept_boxes, kept.sampled_faces, worst, worst_ref);
     EXPECT_GT(kept_total, 10000);  // the test means something only if boxes were kept
+    // Switched off and on again between calls: the kept state starts afresh.
+    for (bool on : {false, true}) {
+      const auto f = c.scene.at(c.times.back() + (on ? 4e-4 : 2e-4));
+      kept.keep_far = on;
+      update_ibm(c.g, f, 3, kept);
+      update_ibm(c.g, f, 3, every);
+      EXPECT_EQ(bit_mismatches(kept, every), 0) << c.name << ", keep_far " << on;
+    }
   }
 }
 
