@@ -55,9 +55,6 @@ void add_advection(const MacGrid& g, int d, Advection scheme, double rho, const 
 void add_viscous(const MacGrid& g, int d, double mu, const std::array<const Field*, 3>& vel, const Field& eps_cell,
                  const FaceRange& range, Field& rhs);
 
-// Both terms in one sweep: rhs = (rhs - [advection divergence]/dx) + [viscous divergence]/dx,
-// the same operations in the same order as add_advection followed by add_viscous.
-// `advect` / mu > 0 switch the two parts.
 // The faces of each row (j, k) of a range to evaluate: lo[q] <= i < hi[q], with q = (j - lo_j) +
 // n_j (k - lo_k) and range[0][0] <= lo[q] <= hi[q] <= range[0][1] (lo = hi: none).
 // work[m] (m = 0 .. n_k): the cost of the first m planes, by which the planes are shared
@@ -73,6 +70,9 @@ inline constexpr long kRowWork = 8, kCopyShare = 4;
 // about equal work (spans->work), or of equal plane counts without spans.
 std::array<int, 2> plane_chunk(const RowSpans* spans, int k0, int nk, int t, int nth);
 
+// Both terms in one sweep: rhs = (rhs - [advection divergence]/dx) + [viscous divergence]/dx,
+// the same operations in the same order as add_advection followed by add_viscous.
+// `advect` / mu > 0 switch the two parts.
 // spans (optional): only those faces of each row are written; the others keep their value.
 // The fluxes a written face needs are evaluated whatever the spans, so the written faces get
 // the same bits as without spans.
