@@ -87,7 +87,6 @@ void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces&
     const Field& fe = src.f_explicit[d];
     Field& Rd = R[d];
     const RowSpans* spans = spans_of(d);
-    const long nj = r[1][1] - r[1][0];
 #pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
     for (int k = -kGhost; k < Rd.nk() + kGhost; ++k)
       for (int j = -kGhost; j < Rd.nj() + kGhost; ++j) {
@@ -99,11 +98,8 @@ void FluidSolver::explicit_rhs(const Vel& v, const Field& eps_cell, const Faces&
           continue;
         }
         // With spans, R is read (by the predictor) on the spans alone.
-        int i_lo = r[0][0], i_hi = r[0][1], q0 = 0, q1 = n;
-        if (spans) {
-          const long q = (j - r[1][0]) + nj * (k - r[2][0]);
-          i_lo = spans->lo[q], i_hi = spans->hi[q], q0 = i_lo + kGhost, q1 = i_hi + kGhost;
-        }
+        const auto [i_lo, i_hi] = row_span(spans, r, j, k);
+        const int q0 = spans ? i_lo + kGhost : 0, q1 = spans ? i_hi + kGhost : n;
         const double* e = E[d].data() + E[d].index(-kGhost, j, k);
         const double* f = fe.empty() ? nullptr : fe.data() + fe.index(-kGhost, j, k);
         for (int q = q0; q < q1; ++q) {
@@ -129,7 +125,6 @@ void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1,
     const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d], &u = s.vel(d);
     const Field &K = src.K[d], &Kv = src.Kv[d];
     const RowSpans* spans = spans_of(d);
-    const long nj = r[1][1] - r[1][0];
     // All face fields of component d share one layout: one offset per row serves them all.
 #pragma omp parallel if (g_.cells() > kOmpMinWork)
     {
@@ -138,10 +133,8 @@ void FluidSolver::predict(const FluidState& s, const Faces& R0, const Faces* R1,
       for (int k = ka; k < kb; ++k)
         for (int j = r[1][0]; j < r[1][1]; ++j) {
           const long o = u.index(0, j, k);
-          int i_lo = r[0][0], i_hi = r[0][1];
+          const auto [i_lo, i_hi] = row_span(spans, r, j, k);
           if (spans) {  // alpha = 1 outside the span: u* = U_B
-            const long q = (j - r[1][0]) + nj * (k - r[2][0]);
-            i_lo = spans->lo[q], i_hi = spans->hi[q];
             const double* b = ub.data() + o;
             std::copy(b + r[0][0], b + i_lo, ustar[d].data() + o + r[0][0]);
             std::copy(b + i_hi, b + r[0][1], ustar[d].data() + o + i_hi);
@@ -232,26 +225,23 @@ bool FluidSolver::update_walls(const geometry::Scene::Frame& frame) {
 void FluidSolver::mark_open_spans() {
   for (int d = 0; d < 3; ++d) {
     const FaceRange r = active_range(g_, params_.bc, d);
-    const long nj = r[1][1] - r[1][0], nk = r[2][1] - r[2][0], rows = std::max(0L, nj * nk);
+    const long nj = r[1][1] - r[1][0], nk = std::max(0, r[2][1] - r[2][0]), rows = std::max(0L, nj * nk);
     span_lo_[d].assign(static_cast<size_t>(rows), r[0][0]);
     span_hi_[d].assign(static_cast<size_t>(rows), r[0][1]);
-    if (!ibm_.any_solid) continue;
-    const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d];
+    if (ibm_.any_solid) {
+      const Field &al = ibm_.alpha_face[d], &ub = ibm_.ub_face[d];
 #pragma omp parallel for schedule(static) if (g_.cells() > kOmpMinWork)
-    for (long q = 0; q < rows; ++q) {
-      const int j = r[1][0] + static_cast<int>(q % nj), k = r[2][0] + static_cast<int>(q / nj);
-      const double *a = al.data() + al.index(0, j, k), *b = ub.data() + ub.index(0, j, k);
-      auto inside = [&](int i) { return a[i] == 1.0 && !(b[i] == 0 && std::signbit(b[i])); };
-      int lo = r[0][0], hi = r[0][1];
-      while (lo < hi && inside(lo)) ++lo;
-      while (hi > lo && inside(hi - 1)) --hi;
-      span_lo_[d][q] = lo, span_hi_[d][q] = lo < hi ? hi : lo;
+      for (long q = 0; q < rows; ++q) {
+        const int j = r[1][0] + static_cast<int>(q % nj), k = r[2][0] + static_cast<int>(q / nj);
+        const double *a = al.data() + al.index(0, j, k), *b = ub.data() + ub.index(0, j, k);
+        auto inside = [&](int i) { return a[i] == 1.0 && !(b[i] == 0 && std::signbit(b[i])); };
+        int lo = r[0][0], hi = r[0][1];
+        while (lo < hi && inside(lo)) ++lo;
+        while (hi > lo && inside(hi - 1)) --hi;
+        span_lo_[d][q] = lo, span_hi_[d][q] = lo < hi ? hi : lo;
+      }
     }
-  }
-  for (int d = 0; d < 3; ++d) {  // the work per plane, summed
-    const FaceRange r = active_range(g_, params_.bc, d);
-    const long nj = r[1][1] - r[1][0], nk = std::max(0, r[2][1] - r[2][0]);
-    span_work_[d].assign(static_cast<size_t>(nk) + 1, 0);
+    span_work_[d].assign(static_cast<size_t>(nk) + 1, 0);  // the work per plane, summed
     for (long k = 0; k < nk; ++k) {
       long w = 0;
       for (long j = 0; j < nj; ++j) {
@@ -260,13 +250,12 @@ void FluidSolver::mark_open_spans() {
       }
       span_work_[d][k + 1] = span_work_[d][k] + w;
     }
+    spans_[d] = {span_lo_[d].data(), span_hi_[d].data(), span_work_[d].data()};
   }
 }
 
 const RowSpans* FluidSolver::spans_of(int d) const {
-  if (!skip_walls_ || span_lo_[d].empty()) return nullptr;
-  spans_[d] = {span_lo_[d].data(), span_hi_[d].data(), span_work_[d].data()};
-  return &spans_[d];
+  return skip_walls_ && !span_lo_[d].empty() ? &spans_[d] : nullptr;
 }
 
 long FluidSolver::faces_in_walls(int d) const {

@@ -120,7 +120,7 @@ class FluidSolver {
   // spans only. Set by update_walls whenever the fractions change.
   std::array<std::vector<int>, 3> span_lo_, span_hi_;
   std::array<std::vector<long>, 3> span_work_;  // RowSpans::work
-  mutable std::array<RowSpans, 3> spans_{};  // views of span_lo_, span_hi_ (spans_of)
+  std::array<RowSpans, 3> spans_{};  // views of span_lo_, span_hi_, span_work_ (spans_of)
   bool skip_walls_ = true;
 };
 

@@ -172,7 +172,7 @@ template <bool Adv, bool Visc>
 template <Advection S, int D, bool Adv, bool Visc>
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void sweep_planes(
     const Kernel& K, const FaceRange& r, int ka, int kb, Field& rhs, const RowSpans* spans) {
-  const long i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1], k0 = r[2][0];
+  const long i0 = r[0][0], i1 = r[0][1], j0 = r[1][0], j1 = r[1][1];
   const long ni = i1 - i0, nj = j1 - j0;
   // Flux buffers (advective a, viscous v), slot i - i0 for face i: x along the row (slot 0
   // = face i0 - 1, so face i at slot i - i0 + 1), y of the row below and of this row, z of
@@ -194,8 +194,8 @@ __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) vo
     double* out = rhs.data() + rhs.index(0, 0, k);
     y_lo = y_hi = 0;
     for (long j = j0; j < j1; ++j) {
-      const long q = (j - j0) + nj * (k - k0);
-      const long lo = spans ? spans->lo[q] : i0, hi = spans ? spans->hi[q] : i1, n = hi - lo, o = lo - i0;
+      const auto [lo, hi] = row_span(spans, r, j, k);
+      const long n = hi - lo, o = lo - i0;
       if (n <= 0) {
         y_lo = y_hi = 0;
         continue;

@@ -66,6 +66,14 @@ struct RowSpans {
 };
 inline constexpr long kRowWork = 8, kCopyShare = 4;
 
+// The faces [first, second) of row (j, k) of range r to evaluate: its span, or the whole row
+// without spans.
+inline std::array<int, 2> row_span(const RowSpans* spans, const FaceRange& r, long j, long k) {
+  if (!spans) return r[0];
+  const long q = (j - r[1][0]) + (r[1][1] - r[1][0]) * (k - r[2][0]);
+  return {spans->lo[q], spans->hi[q]};
+}
+
 // Planes [first, second) of thread t of nth over the n_k planes from k0: contiguous chunks of
 // about equal work (spans->work), or of equal plane counts without spans.
 std::array<int, 2> plane_chunk(const RowSpans* spans, int k0, int nk, int t, int nth);
