@@ -89,7 +89,11 @@ VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fl
 
 VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf,
                                   bool packing) const {
-  fluid::Field vs = fluid::make_cell_field(g_);
+  fluid::Field& vs = scratch_.vs;
+  if (vs.extent() == g_.n())
+    vs.fill(0.0);
+  else
+    vs = fluid::make_cell_field(g_);
   // Per distinct parcel radius too, when the capacities are wanted for several radii.
   const size_t groups = packing ? radii_.size() : 0;
   std::vector<fluid::Field> vs_r(groups > 1 ? groups : 0, fluid::make_cell_field(g_));
@@ -123,20 +127,27 @@ VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fl
 // eps = max(eps_min, 1 - sum_r V_s,r/(C_r dx^3)) where some capacity is below 1; vf.cap the
 // capacity the drag deposits are divided by (for several radii the solid-weighted harmonic
 // mean sum V_s,r / sum (V_s,r/C_r), their smallest where no solid is).
-void Exchange::porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf,
+void Exchange::porosity_of_packing(fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf,
                                    fluid::Field& eps, VoidStats& st) const {
-  if (vs_r.empty()) vs_r.push_back(vs);  // one radius: its solid is all the solid
-  const bool one = vs_r.size() == 1;
+  std::vector<fluid::Field*> solid_r;  // per radius: one radius has all the solid
+  if (vs_r.empty())
+    solid_r.push_back(&vs);
+  else
+    for (auto& f : vs_r) solid_r.push_back(&f);
+  const bool one = solid_r.size() == 1;
   if (sync_)  // the ghost layer's solid decides which nodes near a cut are evaluated
-    for (auto& f : vs_r) sync_->copy_ghosts(f, fluid::kCells);
-  std::vector<fluid::Field> cap(radii_.size(), fluid::make_cell_field(g_));
+    for (auto* f : solid_r) sync_->copy_ghosts(*f, fluid::kCells);
+  std::vector<fluid::Field>& cap = scratch_.cap;
+  cap.resize(radii_.size());
   for (size_t r = 0; r < radii_.size(); ++r) {
-    const std::array<long, 2> nodes = capacity(radii_[r], vs_r[r], cap[r]);
+    if (cap[r].extent() != g_.n()) cap[r] = fluid::make_cell_field(g_);
+    const std::array<long, 2> nodes = capacity(radii_[r], *solid_r[r], cap[r]);
     for (int q = 0; q < 2; ++q) st.capacity_nodes[q] += nodes[q];
   }
   vf.cap = cap[0];
   const double vc = g_.dx * g_.dx * g_.dx;
   long normalized = 0;
+#pragma omp parallel for schedule(static) if (g_.cells() > fluid::kOmpMinWork) reduction(+ : normalized)
   for (int k = 0; k < g_.nz; ++k)
     for (int j = 0; j < g_.ny; ++j)
       for (int i = 0; i < g_.nx; ++i) {
@@ -145,7 +156,7 @@ void Exchange::porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Fi
         if (!cut) continue;
         double solid = 0, inv = 0, cmin = 1;
         for (size_t r = 0; r < cap.size(); ++r) {
-          const double v = vs_r[r](i, j, k), c = cap[r](i, j, k);
+          const double v = (*solid_r[r])(i, j, k), c = cap[r](i, j, k);
           cmin = std::min(cmin, c);
           if (!(v > 0)) continue;
           solid += v;

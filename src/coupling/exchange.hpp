@@ -216,7 +216,8 @@ class Exchange {
   Weights face_weights(int d, const Vec3& x, const fluid::Field& layout) const;
   VoidStats void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf,
                           bool packing) const;
-  void porosity_of_packing(const fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf, fluid::Field& eps,
+  // vs: all the parcels' solid, vs_r: that of each radius (empty when there is one radius).
+  void porosity_of_packing(fluid::Field& vs, std::vector<fluid::Field>& vs_r, VoidFields& vf, fluid::Field& eps,
                            VoidStats& st) const;
   // Capacity quadrature of one cell (porosity.cpp).
   std::vector<unsigned char> near_walls(int reach) const;
@@ -254,6 +255,20 @@ class Exchange {
   // walls, or r not a parcel radius of the species).
   CapacityCache* capacity_cache(double r) const;
   mutable std::vector<CapacityCache> capacity_cache_;  // per entry of radii_
+  // Working arrays of void_fraction() and capacity(), kept from call to call so that none is
+  // allocated and value-initialized per call (the items alone are 12 MB on the die grid);
+  // each is rewritten before it is read.
+  struct VoidScratch {
+    fluid::Field vs;               // the parcels' solid volume per cell
+    std::vector<fluid::Field> cap; // the capacity of each parcel radius
+    std::vector<unsigned char> need, dep;  // per padded cell index (cell_layout_)
+    std::vector<unsigned char> keep;       // per own cell (capacity())
+    fluid::Field raw;
+    std::vector<std::array<int, 3>> cells;
+    std::vector<CapacityItem> items;
+    std::vector<int> count;
+  };
+  mutable VoidScratch scratch_;
   const fluid::IbmFractions* walls_ = nullptr;
   const geometry::Scene::Frame* frame_ = nullptr;
   const VoidFields* void_fields_ = nullptr;

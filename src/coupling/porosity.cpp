@@ -187,8 +187,10 @@ int Exchange::cell_capacity_items(int i, int j, int k, double r, CapacityItem* o
 void Exchange::add_cell_capacities(const std::vector<std::array<int, 3>>& cells, double r,
                                    const std::vector<unsigned char>& near, fluid::Field& raw) const {
   constexpr size_t kChunk = 1024, kItems = kSub * kSub * kSub;
-  std::vector<CapacityItem> items(std::min(cells.size(), kChunk) * kItems);
-  std::vector<int> count(std::min(cells.size(), kChunk));  // -1: a plain cell
+  std::vector<CapacityItem>& items = scratch_.items;  // grown once, never cleared
+  std::vector<int>& count = scratch_.count;           // -1: a plain cell
+  if (items.size() < std::min(cells.size(), kChunk) * kItems) items.resize(std::min(cells.size(), kChunk) * kItems);
+  if (count.size() < std::min(cells.size(), kChunk)) count.resize(std::min(cells.size(), kChunk));
   for (size_t c0 = 0; c0 < cells.size(); c0 += kChunk) {
     const long m = static_cast<long>(std::min(kChunk, cells.size() - c0));
 #pragma omp parallel for schedule(dynamic, 16)
@@ -239,7 +241,12 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
     const int lo = cells_.ghost_side[2 * e] ? -1 : 0, hi = cells_.ghost_side[2 * e + 1] ? n[e] : n[e] - 1;
     return periodic_[e] || (m >= lo && m <= hi);
   };
-  fluid::Field need = fluid::make_cell_field(g_);  // 1: the node's capacity is evaluated
+  // need, per padded cell index (cell_layout_): 1 where the node's capacity is evaluated
+  VoidScratch& scratch = scratch_;
+  const auto at = [&](int i, int j, int k) { return static_cast<size_t>(cell_layout_.index(i, j, k)); };
+  const size_t padded = at(n[0] + fluid::kGhost - 1, n[1] + fluid::kGhost - 1, n[2] + fluid::kGhost - 1) + 1;
+  std::vector<unsigned char>& need = scratch.need;
+  need.assign(padded, 0);
   // Over the block's own nodes and, on cut sides, its ghost layer: the neighbour's cells
   // that reach a node near the cut deposit there from the neighbour (sum_deposits).
   std::array<int, 3> lo{}, hi{};
@@ -258,7 +265,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
               all_plain = is_plain(wrap(0, i + a), wrap(1, j + b), wrap(2, k + c));
             }
         if (all_plain) continue;
-        need(i, j, k) = 1;
+        need[at(i, j, k)] = 1;
         any = true;
       }
   cap.fill(1.0);
@@ -274,7 +281,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
   // with every body where it is now (nothing moved since), else evaluated and kept for the
   // next call. need = 2 marks a node whose capacity came from the cache.
   CapacityCache* cache = capacity_cache(r);
-  std::vector<unsigned char> keep;  // per own cell: an evaluated capacity to be kept
+  std::vector<unsigned char>& keep = scratch.keep;  // per own cell: an evaluated capacity to be kept
   if (cache) {
     const geometry::Scene& scene = *frame_->scene;
     // The moving parts' bounds widened by the margin, with their images across the ends of
@@ -299,14 +306,14 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
     for (int k = 0; k < n[2]; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i) {
-          if (need(i, j, k) != 1) continue;
+          if (need[at(i, j, k)] != 1) continue;
           const Vec3 x = g_.cell_centre(i, j, k);
           bool reached = false;
           for (const auto& b : moving) reached = reached || b.contains(x);
           const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
           if ((!reached && cache->known[q]) || cache->recent[q]) {
             cap(i, j, k) = cache->value(i, j, k);
-            need(i, j, k) = 2;
+            need[at(i, j, k)] = 2;
             ++from_cache;
             continue;
           }
@@ -318,31 +325,37 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
   }
   // Every cell within the reach of an evaluated node deposits (in index order: serial,
   // deterministic); the nodes' capacities are then complete.
-  fluid::Field raw = fluid::make_cell_field(g_);
-  fluid::Field dep = fluid::make_cell_field(g_);
+  fluid::Field& raw = scratch.raw;
+  if (raw.extent() == n)
+    raw.fill(0.0);
+  else
+    raw = fluid::make_cell_field(g_);
+  std::vector<unsigned char>& dep = scratch.dep;  // per padded cell index: 1 where a cell deposits
+  dep.assign(padded, 0);
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
-        if (need(i, j, k) != 1) continue;
+        if (need[at(i, j, k)] != 1) continue;
         for (int c = -1; c <= 1; ++c)
           for (int b = -1; b <= 1; ++b)
             for (int a = -1; a <= 1; ++a) {
               const int x = wrap(0, i + a), y = wrap(1, j + b), z = wrap(2, k + c);
               if (x < 0 || x >= n[0] || y < 0 || y >= n[1] || z < 0 || z >= n[2]) continue;  // own cells only
-              dep(x, y, z) = 1;
+              dep[at(x, y, z)] = 1;
             }
       }
-  std::vector<std::array<int, 3>> cells;
+  std::vector<std::array<int, 3>>& cells = scratch.cells;
+  cells.clear();
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i)
-        if (dep(i, j, k) == 1) cells.push_back({i, j, k});
+        if (dep[at(i, j, k)] == 1) cells.push_back({i, j, k});
   add_cell_capacities(cells, r, near, raw);
   if (sync_) sync_->sum_deposits(raw, fluid::kCells);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
-        if (need(i, j, k) != 1) continue;
+        if (need[at(i, j, k)] != 1) continue;
         cap(i, j, k) = raw(i, j, k);
         ++nodes[1];
         const size_t q = i + static_cast<size_t>(n[0]) * (j + static_cast<size_t>(n[1]) * k);
