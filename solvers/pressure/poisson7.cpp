@@ -219,6 +219,14 @@ void Poisson7::label_components() {
   isolated_cells_.clear();
   shared_cells_.clear();
   for (long c : floating_cells_) (comp_count_[comp_[c]] == 1.0 ? isolated_cells_ : shared_cells_).push_back(c);
+  std::vector<int> shared_id(n_floating_, -1);
+  shared_comp_.clear();
+  shared_count_.clear();
+  for (long c : shared_cells_) {
+    int& s = shared_id[comp_[c]];
+    if (s < 0) s = static_cast<int>(shared_count_.size()), shared_count_.push_back(comp_count_[comp_[c]]);
+    shared_comp_.push_back(s);
+  }
 }
 
 void Poisson7::project_floating(double* v, bool zero_outside) const {
@@ -230,17 +238,11 @@ void Poisson7::project_floating(double* v, bool zero_outside) const {
   for (long q = 0; q < I; ++q) v[iso[q]] = 0.0;
   const long M = static_cast<long>(shared_cells_.size());
   if (M == 0) return;
-  std::vector<double> sum(n_floating_, 0.0);
-  for (long q = 0; q < M; ++q) {  // ascending cell order, as a sweep over all cells
-    const long c = shared_cells_[q];
-    sum[comp_[c]] += v[c];
-  }
-  for (int q = 0; q < n_floating_; ++q) sum[q] /= comp_count_[q];
+  std::vector<double> sum(shared_count_.size(), 0.0);
+  for (long q = 0; q < M; ++q) sum[shared_comp_[q]] += v[shared_cells_[q]];  // ascending cell order
+  for (size_t s = 0; s < sum.size(); ++s) sum[s] /= shared_count_[s];
 #pragma omp parallel for schedule(static) if (M >= kParallelMin)
-  for (long q = 0; q < M; ++q) {
-    const long c = shared_cells_[q];
-    v[c] -= sum[comp_[c]];
-  }
+  for (long q = 0; q < M; ++q) v[shared_cells_[q]] -= sum[shared_comp_[q]];
 }
 
 void Poisson7::gauss_seidel_color(const double* b, double* x, int color, double omega) const {

@@ -92,6 +92,12 @@ class Poisson7 {
   std::vector<long> isolated_cells_, shared_cells_;  // of one-cell / larger floating components
   std::vector<long> isolated_active_;                 // the isolated cells inside active()'s segments
   std::vector<double> comp_count_;
+  // The larger floating components numbered apart (0 .. shared_count_.size() - 1): the number
+  // of each cell of shared_cells_, and their cell counts. The one-cell components are most of
+  // them on a grid with walls (every blocked cell is one), and project_floating only sums over
+  // the others.
+  std::vector<int> shared_comp_;
+  std::vector<double> shared_count_;
   int n_floating_ = 0;
   ActiveRows active_;
 };
