@@ -6,10 +6,12 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "solvers/pressure/stencil_rows.hpp"
@@ -91,19 +93,26 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   check_size(ax, long(nx + 1) * ny * nz, "ax");
   check_size(ay, long(nx) * (ny + 1) * nz, "ay");
   check_size(az, long(nx) * ny * (nz + 1), "az");
-  ax_ = ax;
-  ay_ = ay;
-  az_ = az;
+  const bool par = n() >= kParallelMin;
+  // Copied, and below every weight, diag and open entry written, on the threads and without a
+  // serial fill first (the arrays keep their size from call to call).
+  for (auto [src, dst] : {std::pair{&ax, &ax_}, std::pair{&ay, &ay_}, std::pair{&az, &az_}}) {
+    dst->resize(src->size());
+    const long m = static_cast<long>(src->size());
+    const double* s = src->data();
+    double* d = dst->data();
+#pragma omp parallel for schedule(static) if (par)
+    for (long q = 0; q < m; ++q) d[q] = s[q];
+  }
   // The previous weights decide whether the connectivity (which faces have w > 0) changed.
   const bool had = !comp_.empty();
-  std::vector<double> old_x, old_y, old_z, old_open;
-  if (had) old_x.swap(wx_), old_y.swap(wy_), old_z.swap(wz_), old_open.swap(open_);
-  wx_.assign(ax.size(), 0.0);
-  wy_.assign(ay.size(), 0.0);
-  wz_.assign(az.size(), 0.0);
-  diag_.assign(n(), 0.0);
-  open_.assign(n(), 0.0);
-  const bool par = n() >= kParallelMin;
+  std::vector<double>* old[4] = {&old_w_[0], &old_w_[1], &old_w_[2], &old_w_[3]};
+  if (had) old[0]->swap(wx_), old[1]->swap(wy_), old[2]->swap(wz_), old[3]->swap(open_);
+  wx_.resize(ax.size());
+  wy_.resize(ay.size());
+  wz_.resize(az.size());
+  diag_.resize(n());
+  open_.resize(n());
   // Every cell sums its faces in the same order as a serial sweep x, y, z (face index
   // ascending): x and y faces touch one k plane (parallel over k), z faces one (i, j) column
   // (parallel over j), so the sums are those of the serial loops.
@@ -113,8 +122,8 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
 #pragma omp parallel for schedule(static) if (par)
   for (long c = 0; c < N; ++c) diag_[c] += open_[c];
   // Same pattern of positive weights: the components (and floating cells) are unchanged.
-  if (had && same_sign_pattern(old_x, wx_, par) && same_sign_pattern(old_y, wy_, par) &&
-      same_sign_pattern(old_z, wz_, par) && same_sign_pattern(old_open, open_, par))
+  if (had && same_sign_pattern(*old[0], wx_, par) && same_sign_pattern(*old[1], wy_, par) &&
+      same_sign_pattern(*old[2], wz_, par) && same_sign_pattern(*old[3], open_, par))
     return;
   label_components();
   active_.from_diag(diag_.data(), g_.nx, g_.ny, g_.nz, periodic(0));
@@ -136,15 +145,21 @@ void Poisson7::add_xy_faces(const std::vector<double>& ax, const std::vector<dou
   const bool par = n() >= kParallelMin;
 #pragma omp parallel for schedule(static) if (par)
   for (int k = 0; k < nz; ++k) {
+    // diag and open of plane k start at 0 here: only this plane's faces touch them so far
+    const long plane = long(nx) * ny;
+    std::fill(diag_.begin() + plane * k, diag_.begin() + plane * (k + 1), 0.0);
+    std::fill(open_.begin() + plane * k, open_.begin() + plane * (k + 1), 0.0);
     for (int j = 0; j < ny; ++j) {
       for (int i = 0; i <= nx; ++i) {  // x faces: interior, wrap (face 0) or boundary
         const long f = i + long(nx + 1) * (j + long(ny) * k);
         const long cl = (i - 1) + long(nx) * (j + long(ny) * k), cr = cl + 1;
         const double w = ax[f] * hx;
-        if (i > 0 && i < nx) { wx_[f] = w; diag_[cl] += w; diag_[cr] += w; }
-        else if (px) { if (i == 0) { wx_[f] = w; diag_[cr] += w; diag_[cr + nx - 1] += w; } }
+        double wf = 0.0;  // the weight coupling two cells (0: none)
+        if (i > 0 && i < nx) { wf = w; diag_[cl] += w; diag_[cr] += w; }
+        else if (px) { if (i == 0) { wf = w; diag_[cr] += w; diag_[cr + nx - 1] += w; } }
         else if (i == 0 && bc[0] == Boundary::Open) open_[cr] += 2 * w;
         else if (i == nx && bc[1] == Boundary::Open) open_[cl] += 2 * w;
+        wx_[f] = wf;
       }
     }
     for (int j = 0; j <= ny; ++j)
@@ -152,10 +167,12 @@ void Poisson7::add_xy_faces(const std::vector<double>& ax, const std::vector<dou
         const long f = i + long(nx) * (j + long(ny + 1) * k);
         const long cs = i + long(nx) * ((j - 1) + long(ny) * k), cn = cs + nx;
         const double w = ay[f] * hy;
-        if (j > 0 && j < ny) { wy_[f] = w; diag_[cs] += w; diag_[cn] += w; }
-        else if (py) { if (j == 0) { wy_[f] = w; diag_[cn] += w; diag_[cn + long(nx) * (ny - 1)] += w; } }
+        double wf = 0.0;
+        if (j > 0 && j < ny) { wf = w; diag_[cs] += w; diag_[cn] += w; }
+        else if (py) { if (j == 0) { wf = w; diag_[cn] += w; diag_[cn + long(nx) * (ny - 1)] += w; } }
         else if (j == 0 && bc[2] == Boundary::Open) open_[cn] += 2 * w;
         else if (j == ny && bc[3] == Boundary::Open) open_[cs] += 2 * w;
+        wy_[f] = wf;
       }
   }
 }
@@ -175,10 +192,12 @@ void Poisson7::add_z_faces(const std::vector<double>& az) {
         const long f = i + long(nx) * (j + long(ny) * k);
         const long cb = f - plane, ct = f;
         const double w = az[f] * hz;
-        if (k > 0 && k < nz) { wz_[f] = w; diag_[cb] += w; diag_[ct] += w; }
-        else if (pz) { if (k == 0) { wz_[f] = w; diag_[ct] += w; diag_[ct + plane * (nz - 1)] += w; } }
+        double wf = 0.0;
+        if (k > 0 && k < nz) { wf = w; diag_[cb] += w; diag_[ct] += w; }
+        else if (pz) { if (k == 0) { wf = w; diag_[ct] += w; diag_[ct + plane * (nz - 1)] += w; } }
         else if (k == 0 && bc[4] == Boundary::Open) open_[ct] += 2 * w;
         else if (k == nz && bc[5] == Boundary::Open) open_[cb] += 2 * w;
+        wz_[f] = wf;
       }
 }
 

@@ -87,6 +87,7 @@ class Poisson7 {
 
   GridSpec g_;
   std::vector<double> ax_, ay_, az_, wx_, wy_, wz_, diag_, open_;
+  std::vector<double> old_w_[4];  // set(): the previous wx_, wy_, wz_, open_ (compared, then reused)
   std::vector<int> comp_;
   std::vector<long> floating_cells_;  // cells of floating components, ascending
   std::vector<long> isolated_cells_, shared_cells_;  // of one-cell / larger floating components
