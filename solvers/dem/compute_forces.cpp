@@ -179,7 +179,9 @@ class ForcePass {
     }
     const contact::History* hist = nl_.hist.data();
     std::fill(buf.kstart.begin(), buf.kstart.begin() + (bl.i1 - bl.i0) + 1, 0);
+    constexpr int kAhead = 8;  // records prefetched ahead of the copy (its loads miss otherwise)
     for (int k = 0; k < na; ++k) {
+      if (k + kAhead < na) __builtin_prefetch(&hist[buf.ent[k + kAhead]]);
       buf.h[k] = hist[buf.ent[k]];
       ++buf.kstart[buf.own[k] - bl.i0 + 1];
     }
