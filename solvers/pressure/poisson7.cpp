@@ -106,8 +106,7 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
   }
   // The previous weights decide whether the connectivity (which faces have w > 0) changed.
   const bool had = !comp_.empty();
-  std::vector<double>* old[4] = {&old_w_[0], &old_w_[1], &old_w_[2], &old_w_[3]};
-  if (had) old[0]->swap(wx_), old[1]->swap(wy_), old[2]->swap(wz_), old[3]->swap(open_);
+  if (had) old_w_[0].swap(wx_), old_w_[1].swap(wy_), old_w_[2].swap(wz_), old_w_[3].swap(open_);
   wx_.resize(ax.size());
   wy_.resize(ay.size());
   wz_.resize(az.size());
@@ -122,8 +121,8 @@ void Poisson7::set(const std::vector<double>& ax, const std::vector<double>& ay,
 #pragma omp parallel for schedule(static) if (par)
   for (long c = 0; c < N; ++c) diag_[c] += open_[c];
   // Same pattern of positive weights: the components (and floating cells) are unchanged.
-  if (had && same_sign_pattern(*old[0], wx_, par) && same_sign_pattern(*old[1], wy_, par) &&
-      same_sign_pattern(*old[2], wz_, par) && same_sign_pattern(*old[3], open_, par))
+  if (had && same_sign_pattern(old_w_[0], wx_, par) && same_sign_pattern(old_w_[1], wy_, par) &&
+      same_sign_pattern(old_w_[2], wz_, par) && same_sign_pattern(old_w_[3], open_, par))
     return;
   label_components();
   active_.from_diag(diag_.data(), g_.nx, g_.ny, g_.nz, periodic(0));

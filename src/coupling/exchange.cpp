@@ -90,10 +90,7 @@ VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fl
 VoidStats Exchange::void_fraction(const Particles& p, const ParcelWeights& w, fluid::Field& eps, VoidFields& vf,
                                   bool packing) const {
   fluid::Field& vs = scratch_.vs;
-  if (vs.extent() == g_.n())
-    vs.fill(0.0);
-  else
-    vs = fluid::make_cell_field(g_);
+  vs.resize(g_.nx, g_.ny, g_.nz);  // zeroed, in the storage of the last call
   // Per distinct parcel radius too, when the capacities are wanted for several radii.
   const size_t groups = packing ? radii_.size() : 0;
   std::vector<fluid::Field> vs_r(groups > 1 ? groups : 0, fluid::make_cell_field(g_));

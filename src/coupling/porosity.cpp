@@ -189,8 +189,9 @@ void Exchange::add_cell_capacities(const std::vector<std::array<int, 3>>& cells,
   constexpr size_t kChunk = 1024, kItems = kSub * kSub * kSub;
   std::vector<CapacityItem>& items = scratch_.items;  // grown once, never cleared
   std::vector<int>& count = scratch_.count;           // -1: a plain cell
-  if (items.size() < std::min(cells.size(), kChunk) * kItems) items.resize(std::min(cells.size(), kChunk) * kItems);
-  if (count.size() < std::min(cells.size(), kChunk)) count.resize(std::min(cells.size(), kChunk));
+  const size_t chunk = std::min(cells.size(), kChunk);
+  if (items.size() < chunk * kItems) items.resize(chunk * kItems);
+  if (count.size() < chunk) count.resize(chunk);
   for (size_t c0 = 0; c0 < cells.size(); c0 += kChunk) {
     const long m = static_cast<long>(std::min(kChunk, cells.size() - c0));
 #pragma omp parallel for schedule(dynamic, 16)
@@ -242,11 +243,9 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
     return periodic_[e] || (m >= lo && m <= hi);
   };
   // need, per padded cell index (cell_layout_): 1 where the node's capacity is evaluated
-  VoidScratch& scratch = scratch_;
   const auto at = [&](int i, int j, int k) { return static_cast<size_t>(cell_layout_.index(i, j, k)); };
-  const size_t padded = at(n[0] + fluid::kGhost - 1, n[1] + fluid::kGhost - 1, n[2] + fluid::kGhost - 1) + 1;
-  std::vector<unsigned char>& need = scratch.need;
-  need.assign(padded, 0);
+  std::vector<unsigned char>& need = scratch_.need;
+  need.assign(cell_layout_.size(), 0);
   // Over the block's own nodes and, on cut sides, its ghost layer: the neighbour's cells
   // that reach a node near the cut deposit there from the neighbour (sum_deposits).
   std::array<int, 3> lo{}, hi{};
@@ -281,7 +280,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
   // with every body where it is now (nothing moved since), else evaluated and kept for the
   // next call. need = 2 marks a node whose capacity came from the cache.
   CapacityCache* cache = capacity_cache(r);
-  std::vector<unsigned char>& keep = scratch.keep;  // per own cell: an evaluated capacity to be kept
+  std::vector<unsigned char>& keep = scratch_.keep;  // per own cell: an evaluated capacity to be kept
   if (cache) {
     const geometry::Scene& scene = *frame_->scene;
     // The moving parts' bounds widened by the margin, with their images across the ends of
@@ -325,13 +324,10 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
   }
   // Every cell within the reach of an evaluated node deposits (in index order: serial,
   // deterministic); the nodes' capacities are then complete.
-  fluid::Field& raw = scratch.raw;
-  if (raw.extent() == n)
-    raw.fill(0.0);
-  else
-    raw = fluid::make_cell_field(g_);
-  std::vector<unsigned char>& dep = scratch.dep;  // per padded cell index: 1 where a cell deposits
-  dep.assign(padded, 0);
+  fluid::Field& raw = scratch_.raw;
+  raw.resize(n[0], n[1], n[2]);  // zeroed, in the storage of the last call
+  std::vector<unsigned char>& dep = scratch_.dep;  // per padded cell index: 1 where a cell deposits
+  dep.assign(cell_layout_.size(), 0);
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
       for (int i = lo[0]; i <= hi[0]; ++i) {
@@ -344,7 +340,7 @@ std::array<long, 2> Exchange::capacity(double r, const fluid::Field& solid, flui
               dep[at(x, y, z)] = 1;
             }
       }
-  std::vector<std::array<int, 3>>& cells = scratch.cells;
+  std::vector<std::array<int, 3>>& cells = scratch_.cells;
   cells.clear();
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)

@@ -65,6 +65,7 @@ class Field {
     data_.assign(static_cast<size_t>(sz_) * (nk + 2 * kGhost), value);
   }
   bool empty() const { return data_.empty(); }
+  size_t size() const { return data_.size(); }  // entries, ghost layers included
   int ni() const { return ni_; }
   int nj() const { return nj_; }
   int nk() const { return nk_; }

@@ -308,7 +308,8 @@ TEST(Poisson7Set, ReusedArraysGiveWhatAFreshOperatorGives) {
       Poisson7 kept(test::make_problem(nx, ny, nz, bc).g);
       for (int round = 0; round < 4; ++round) {
         test::Problem p = test::make_problem(nx, ny, nz, bc);
-        // a different pattern per round: the solids shifted by `round` cells along x and y
+        // the solids shifted by 0, 1 and 2 cells along x and y; round 3 keeps round 2's
+        // pattern with the coefficients scaled
         const int shift = std::min(round, 2);
         test::Problem q = p;
         add_solids(q);
