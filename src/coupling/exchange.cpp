@@ -194,7 +194,8 @@ void Exchange::porosity_source(const VoidFields& now, const fluid::Field& mix_ol
   const std::array<int, 3> n = g_.n();
   mass = fluid::make_cell_field(g_);
   fluid::Field share = fluid::make_cell_field(g_);  // mix - eps at t^{n+1}: the walls' share
-  bool any = false;
+  bool any = false;  // each cell on its own: the threads' split changes nothing
+#pragma omp parallel for schedule(static) reduction(|| : any) if (g_.cells() > fluid::kOmpMinWork)
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {

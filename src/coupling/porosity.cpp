@@ -61,6 +61,7 @@ std::vector<unsigned char> Exchange::near_walls(int reach) const {
   std::vector<unsigned char> m(total, 0), t(total, 0);
   if (!(walls_ && walls_->valid && walls_->any_solid)) return m;
   const fluid::Field& al = walls_->alpha_cell;  // its layout is cell_layout_'s: index = padded offset
+#pragma omp parallel for schedule(static) if (static_cast<long>(total) > fluid::kOmpMinWork)
   for (size_t q = 0; q < total; ++q) m[q] = al.data()[q] > 0;
   const std::array<long, 3> st{1, e[0], static_cast<long>(e[0]) * e[1]};
   // Separable dilation, one axis at a time (each t from m alone): a row of t is the OR of

@@ -30,6 +30,7 @@ long flat_index(const MacGrid& g, int i, int j, int k) {
 // Each cell's kind: wall (wall fraction >= 0.5), air (eps >= eps_air) or powder.
 std::vector<uint8_t> classify_cells(const MacGrid& g, const Field& eps, const Field& alpha_cell, double eps_air) {
   std::vector<uint8_t> kind(g.cells());
+#pragma omp parallel for schedule(static) if (g.cells() > kOmpMinWork)
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) {

@@ -11,7 +11,8 @@
 // For each bubble: its air volume sum (1 - alpha) eps dx^3 over its cells [m^3], its
 // centroid (air-volume weighted) [m] and the top of its highest cell [m]. The search is
 // serial and deterministic (cells visited in index order), so the result does not depend
-// on the thread count.
+// on the thread count; only the sorting of cells into kinds, each cell on its own, runs on
+// all threads.
 #pragma once
 #include <vector>
 
