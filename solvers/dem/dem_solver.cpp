@@ -79,21 +79,22 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double) && std::is_standard_layout_v<Ve
 //   j = (h c)(u - v1),  j_drag += j,  w_fluid += dot(h f_ext + j, (v0 + v1)/2),  v = v1
 // (without air: v += hm F), and omega += (h/I) T. `kKicks` half kicks with the same forces
 // (2: the one that closes the previous step and the one that opens this one), then, with
-// kDrift, x += dt v; with kBuild, returns max |x - x_at_build|^2 (NaN ignored, as in
-// NeighborList::needs_rebuild).
+// kDrift, x += dt v; with kBuild, returns how far the particles moved since the build
+// (MoveBounds: max |x - x_at_build|^2 and the least and greatest displacement per axis; NaN
+// ignored, as in NeighborList::needs_rebuild).
 // Each particle sees the operations of the Vec3 expressions above in their order, so the
 // result is the same to the bit as kicking particle by particle. The per-particle factors
 // are spread to one value per component so that the arithmetic runs over the components as
 // one flat array (vectorized); the sums over components (the dot product) go back to one
 // value per particle in the Vec3 order ((x + y) + z).
 template <bool kAir, int kKicks, bool kDrift, bool kBuild>
-__attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_drift_range(
+__attribute__((target_clones("arch=x86-64-v3", "default"))) MoveBounds kicks_and_drift_range(
     const KickArrays& a, double* __restrict x, const double* __restrict x0, int i0, int i1, double h, double dt) {
   constexpr int kBlock = 256;
   alignas(64) double hm1[kBlock], s1[kBlock], hc1[kBlock], hi1[kBlock];  // per particle
   alignas(64) double hm3[3 * kBlock], s3[3 * kBlock], c3[3 * kBlock], hc3[3 * kBlock], hi3[3 * kBlock];
   alignas(64) double term[3 * kBlock];
-  double move2 = 0;
+  MoveBounds moved;
   for (int b0 = i0; b0 < i1; b0 += kBlock) {
     const int n = std::min(i1 - b0, kBlock), m = 3 * n;
     const int k0 = 3 * b0;
@@ -142,36 +143,52 @@ __attribute__((target_clones("arch=x86-64-v3", "default"))) double kicks_and_dri
     }
     if (kDrift)
       for (int r = 0; r < m; ++r) x[k0 + r] += dt * v[r];
-    if (kBuild)
+    if (kBuild) {  // branch-free selects (a NaN compares false and is passed over)
+      double m2 = moved.max2, lx = moved.lo.x, ly = moved.lo.y, lz = moved.lo.z, hx = moved.hi.x, hy = moved.hi.y,
+             hz = moved.hi.z;
       for (int q = 0; q < n; ++q) {
         const int k = k0 + 3 * q;
         const double dx = x[k] - x0[k], dy = x[k + 1] - x0[k + 1], dz = x[k + 2] - x0[k + 2];
         const double d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 > move2) move2 = d2;
+        m2 = d2 > m2 ? d2 : m2;
+        lx = dx < lx ? dx : lx, hx = dx > hx ? dx : hx;
+        ly = dy < ly ? dy : ly, hy = dy > hy ? dy : hy;
+        lz = dz < lz ? dz : lz, hz = dz > hz ? dz : hz;
       }
+      moved.max2 = m2, moved.lo = {lx, ly, lz}, moved.hi = {hx, hy, hz};
+    }
   }
-  return move2;
+  return moved;
 }
 
 // The particles 0..n-1 (the owned ones: ghosts are refreshed from their owners), split
 // evenly between the threads.
 template <bool kAir, int kKicks, bool kDrift, bool kBuild>
-double kicks_and_drift_t(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt) {
+MoveBounds kicks_and_drift_t(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt) {
   const KickArrays a(p);
   double* x = reinterpret_cast<double*>(p.x.data());
   const double* x0 = kBuild ? reinterpret_cast<const double*>(x_at_build.data()) : nullptr;
-  double move2 = 0;
-#pragma omp parallel reduction(max : move2) if (n >= 512)
+  // The threads' bounds combined by minimum and maximum: exact, whatever the split.
+  const MoveBounds none;
+  double max2 = 0, lo[3] = {none.lo.x, none.lo.y, none.lo.z}, hi[3] = {none.hi.x, none.hi.y, none.hi.z};
+#pragma omp parallel reduction(max : max2, hi[:3]) reduction(min : lo[:3]) if (n >= 512)
   {
     const long nt = omp_get_num_threads(), t = omp_get_thread_num();
     const int i0 = static_cast<int>(n * t / nt), i1 = static_cast<int>(n * (t + 1) / nt);
-    move2 = kicks_and_drift_range<kAir, kKicks, kDrift, kBuild>(a, x, x0, i0, i1, h, dt);
+    const MoveBounds m = kicks_and_drift_range<kAir, kKicks, kDrift, kBuild>(a, x, x0, i0, i1, h, dt);
+    max2 = std::max(max2, m.max2);
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], m.lo[d]), hi[d] = std::max(hi[d], m.hi[d]);
   }
-  return move2;
+  MoveBounds moved;
+  moved.max2 = max2;
+  moved.lo = {lo[0], lo[1], lo[2]};
+  moved.hi = {hi[0], hi[1], hi[2]};
+  return moved;
 }
 
 template <bool kAir>
-double kicks_and_drift_air(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool close) {
+MoveBounds kicks_and_drift_air(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt,
+                               bool close) {
   const bool build = x_at_build.size() == p.size();
   if (close)
     return build ? kicks_and_drift_t<kAir, 2, true, true>(p, n, x_at_build, h, dt)
@@ -181,10 +198,10 @@ double kicks_and_drift_air(Particles& p, int n, const std::vector<Vec3>& x_at_bu
 }
 
 // With `close`, the half kick that ends the previous step, then (always) the half kick
-// that starts this one and the drift, in one pass; returns max |x_i - x_at_build_i|^2 for
-// the rebuild test (0 when there is no build yet).
-double kicks_and_drift(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool air,
-                       bool close) {
+// that starts this one and the drift, in one pass; returns how far the particles moved
+// since the build, for the rebuild test (nothing when there is no build yet).
+MoveBounds kicks_and_drift(Particles& p, int n, const std::vector<Vec3>& x_at_build, double h, double dt, bool air,
+                           bool close) {
   return air ? kicks_and_drift_air<true>(p, n, x_at_build, h, dt, close)
              : kicks_and_drift_air<false>(p, n, x_at_build, h, dt, close);
 }
@@ -260,17 +277,19 @@ void DemSolver::advance(long n) {
     forces_valid_ = true;
   }
   for (long k = 0; k < n; ++k) {
-    double move2;
+    MoveBounds moved;
     {
       auto scope = timers_.scope(t_kick_);
-      move2 = kicks_and_drift(p_, static_cast<int>(owned()), nl_.x_at_build, 0.5 * dt, dt, air_forces_, k > 0);
+      moved = kicks_and_drift(p_, static_cast<int>(owned()), nl_.x_at_build, 0.5 * dt, dt, air_forces_, k > 0);
     }
     t_ += dt;
     ++steps_;
     frame_ = scene_.at(t_);
     {
       auto scope = timers_.scope(t_neigh_);
-      bool rebuild = nl_.needs_rebuild(move2, p_.size(), frame_);
+      // One process: the test of the relative displacements (neighbor_list.hpp); a
+      // distributed run keeps each particle's own below skin/2 for its ghost layers.
+      bool rebuild = nl_.needs_rebuild(moved, p_.size(), frame_, !exchange_);
       if (exchange_) rebuild = exchange_->any(rebuild);
       if (rebuild)
         rebuild_lists();

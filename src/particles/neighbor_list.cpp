@@ -124,15 +124,31 @@ void NeighborList::derive() {
   direct_team = 0;
 }
 
-bool NeighborList::needs_rebuild(double max_move2, size_t n, const geometry::Scene::Frame& walls) const {
+bool NeighborList::needs_rebuild(const MoveBounds& moved, size_t n, const geometry::Scene::Frame& walls,
+                                 bool relative) const {
   if (x_at_build.size() != n) return true;
+  // Each particle's own displacement, as below: some particle moved more than skin/2, or
+  // more than the wall limit. Enough for the lists to be complete; with `relative` the
+  // other test may find them complete still (either suffices).
   double wall_move = 0;
   for (size_t b = 0; b < walls.offset.size() && b < body_offset_at_build.size(); ++b)
     wall_move = std::max(wall_move, norm(walls.offset[b] - body_offset_at_build[b]));
   const double wall_limit = 0.5 * skin - wall_move;
-  if (wall_limit <= 0) return true;
-  // As below: some particle moved more than skin/2, or more than the wall limit.
-  return max_move2 > 0.25 * skin * skin || max_move2 > wall_limit * wall_limit;
+  const bool each = wall_limit > 0 && !(moved.max2 > 0.25 * skin * skin || moved.max2 > wall_limit * wall_limit);
+  if (each || !relative) return !each;
+  if (body_offset_at_build.size() != walls.offset.size()) return true;
+  if (!(moved.lo.x <= moved.hi.x && moved.lo.y <= moved.hi.y && moved.lo.z <= moved.hi.z)) return false;  // none
+  // Pairs (neighbor_list.hpp): twice the half-diagonal of the displacements' box below skin.
+  const Vec3 half = 0.5 * (moved.hi - moved.lo);
+  if (4.0 * norm2(half) >= skin * skin) return true;
+  // Walls: every body (the static ones have dw = 0) against the box of displacements.
+  for (size_t b = 0; b < walls.offset.size(); ++b) {
+    const Vec3 dw = walls.offset[b] - body_offset_at_build[b];
+    Vec3 e;
+    for (int a = 0; a < 3; ++a) e[a] = std::max(moved.hi[a] - dw[a], dw[a] - moved.lo[a]);
+    if (norm2(e) >= skin * skin) return true;
+  }
+  return false;
 }
 
 bool NeighborList::needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const {

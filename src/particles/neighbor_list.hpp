@@ -5,9 +5,12 @@
 // stores the partner's share per entry; a second pass gathers those shares for every
 // particle through the reverse index (rev_offset/rev_entry), always in the same order.
 // Every sum therefore has a fixed order: the result does not depend on the number of
-// threads. A pair is listed when |x_i - x_j| < r_i + r_j + skin; the lists stay valid
-// until some particle has moved more than skin/2 (plus the largest wall displacement,
-// for wall candidates).
+// threads. A pair is listed when |x_i - x_j| < r_i + r_j + skin, a wall part when its
+// surface lies within r_i + skin of x_i. The lists stay complete until some particle has
+// moved more than skin/2 (plus the largest wall displacement, for wall candidates), or,
+// given the spread of the particles' displacements (MoveBounds, one process), until two
+// particles may have moved more than skin apart or a particle and a wall body more than
+// skin (needs_rebuild below says why either suffices).
 //
 // Periodic axes: positions are wrapped into the period box at each build, and each entry
 // carries the image of its partner (x_j + shift[image]). A periodic length must hold at
@@ -26,6 +29,7 @@
 // history in the owned parcel's frame.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +38,14 @@
 #include "particles/particles.hpp"
 
 namespace cgdem {
+
+// How far the particles moved since the last build: the largest |x_i - x_i(build)|^2 and,
+// per axis, the least and the greatest x_i - x_i(build) (lo > hi: no particle). NaN is
+// ignored, as in needs_rebuild.
+struct MoveBounds {
+  double max2 = 0;
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+};
 
 struct Periodicity {
   std::array<bool, 3> axis{false, false, false};
@@ -121,9 +133,21 @@ struct NeighborList {
   void derive();
   // True when the lists may have become incomplete.
   bool needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const;
-  // The same test, given max |x_i - x_i(at build)|^2 over the particles (computed by the
-  // caller while it moved them).
-  bool needs_rebuild(double max_move2, size_t n, const geometry::Scene::Frame& walls) const;
+  // The same test, given how far the particles moved (computed by the caller while it moved
+  // them). With `relative`, also the test of the relative displacements, and a build only
+  // when both ask for one (either proves the lists complete; the relative one keeps them
+  // longer when the particles move together or with a wall body, the per-particle one when
+  // they wander each its own way):
+  //   pairs: with D the centre of the displacements' bounding box, every |dx_i - D| <= h,
+  //          h = |(hi - lo)/2|, so |dx_i - dx_j| <= 2h: no pair unlisted at the build
+  //          (gap >= skin) can touch while 2h < skin;
+  //   walls: a part's signed distance is 1-Lipschitz (exact primitives; min and max of
+  //          them) and bodies translate, so a part that was no candidate (distance >=
+  //          r + skin) cannot touch while |dx_i - dw_b| < skin for its body b; over the
+  //          bounding box that is max(hi - dw_b, dw_b - lo) per axis.
+  // Not for distributed runs: a rank's ghost layer and migration need each particle's own
+  // displacement below skin/2 (the test without `relative`).
+  bool needs_rebuild(const MoveBounds& moved, size_t n, const geometry::Scene::Frame& walls, bool relative) const;
   size_t pair_entries() const { return partner.size(); }
   bool valid_for(const Particles& p) const { return offset.size() == p.size() + 1; }
   // Particles that are not ghosts: indices 0 .. owned(p) - 1.
