@@ -287,9 +287,10 @@ void DemSolver::advance(long n) {
     frame_ = scene_.at(t_);
     {
       auto scope = timers_.scope(t_neigh_);
-      // One process: the test of the relative displacements (neighbor_list.hpp); a
-      // distributed run keeps each particle's own below skin/2 for its ghost layers.
-      bool rebuild = nl_.needs_rebuild(moved, p_.size(), frame_, !exchange_);
+      // One block: the test of the relative displacements too (neighbor_list.hpp); a run
+      // over several keeps each particle's own below skin/2 for its ghost layers.
+      const bool relative = !exchange_ || exchange_->relative_rebuild_test();
+      bool rebuild = nl_.needs_rebuild(moved, p_.size(), frame_, relative);
       if (exchange_) rebuild = exchange_->any(rebuild);
       if (rebuild)
         rebuild_lists();

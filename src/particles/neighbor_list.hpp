@@ -145,8 +145,8 @@ struct NeighborList {
   //          them) and bodies translate, so a part that was no candidate (distance >=
   //          r + skin) cannot touch while |dx_i - dw_b| < skin for its body b; over the
   //          bounding box that is max(hi - dw_b, dw_b - lo) per axis.
-  // Not for distributed runs: a rank's ghost layer and migration need each particle's own
-  // displacement below skin/2 (the test without `relative`).
+  // Not for runs over several blocks: a rank's ghost layer and migration need each
+  // particle's own displacement below skin/2 (the test without `relative`).
   bool needs_rebuild(const MoveBounds& moved, size_t n, const geometry::Scene::Frame& walls, bool relative) const;
   size_t pair_entries() const { return partner.size(); }
   bool valid_for(const Particles& p) const { return offset.size() == p.size() + 1; }

@@ -119,8 +119,8 @@ RelativeRun run_lists(bool relative, double trusted_skin_factor) {
   geometry::Scene scene;
   const int floor = scene.add_body("floor", geometry::Motion{});
   scene.add_part(floor, "floor", geometry::make_box({-1, -1, -1}, {1, 1, 0}));
-  const int shoe = scene.add_body("block", geometry::Motion::constant({u, 0, 0}));
-  scene.add_part(shoe, "block", geometry::make_box({-0.5 * d, 0, 0}, {0.5 * d, 8 * d, 2 * d}));
+  const int block = scene.add_body("block", geometry::Motion::constant({u, 0, 0}));
+  scene.add_part(block, "block", geometry::make_box({-0.5 * d, 0, 0}, {0.5 * d, 8 * d, 2 * d}));
   Particles p;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> U(0.0, 1.0);
