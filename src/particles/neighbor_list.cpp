@@ -151,24 +151,25 @@ bool NeighborList::needs_rebuild(const MoveBounds& moved, size_t n, const geomet
   return false;
 }
 
-bool NeighborList::needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const {
-  if (x_at_build.size() != p.size()) return true;
-  double wall_move = 0;
-  for (size_t b = 0; b < walls.offset.size() && b < body_offset_at_build.size(); ++b)
-    wall_move = std::max(wall_move, norm(walls.offset[b] - body_offset_at_build[b]));
-  const double limit2 = 0.25 * skin * skin;
-  const int np = static_cast<int>(p.size());
-  // Pairs: each particle may have moved up to skin/2. Walls: particle + wall motion.
-  const double wall_limit = 0.5 * skin - wall_move;
-  if (wall_limit <= 0) return true;
-  const double wl2 = wall_limit * wall_limit;
-  int flag = 0;
-#pragma omp parallel for schedule(static) reduction(| : flag) if (np >= 512)
+MoveBounds NeighborList::moved_since_build(const Particles& p) const {
+  MoveBounds m;
+  const int np = static_cast<int>(std::min(p.size(), x_at_build.size()));
+  double max2 = 0, lo[3] = {m.lo.x, m.lo.y, m.lo.z}, hi[3] = {m.hi.x, m.hi.y, m.hi.z};
+#pragma omp parallel for schedule(static) reduction(max : max2, hi[:3]) reduction(min : lo[:3]) if (np >= 512)
   for (int i = 0; i < np; ++i) {
-    double d2 = norm2(p.x[i] - x_at_build[i]);
-    if (d2 > limit2 || d2 > wl2) flag = 1;
+    const Vec3 d = p.x[i] - x_at_build[i];
+    const double d2 = norm2(d);
+    max2 = d2 > max2 ? d2 : max2;  // a NaN compares false and is passed over
+    for (int a = 0; a < 3; ++a) lo[a] = d[a] < lo[a] ? d[a] : lo[a], hi[a] = d[a] > hi[a] ? d[a] : hi[a];
   }
-  return flag != 0;
+  m.max2 = max2;
+  m.lo = {lo[0], lo[1], lo[2]};
+  m.hi = {hi[0], hi[1], hi[2]};
+  return m;
+}
+
+bool NeighborList::needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const {
+  return needs_rebuild(moved_since_build(p), p.size(), walls, false);
 }
 
 }  // namespace cgdem

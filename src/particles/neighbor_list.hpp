@@ -131,7 +131,10 @@ struct NeighborList {
   // Recomputes live, rev_pos and clears the force pass output (after build() or after
   // the saved fields were loaded).
   void derive();
-  // True when the lists may have become incomplete.
+  // How far the particles moved since the last build (the first min(p.size(), built) of
+  // them; DemSolver computes the same while it drifts them).
+  MoveBounds moved_since_build(const Particles& p) const;
+  // True when the lists may have become incomplete (each particle's own displacement).
   bool needs_rebuild(const Particles& p, const geometry::Scene::Frame& walls) const;
   // The same test, given how far the particles moved (computed by the caller while it moved
   // them). With `relative`, also the test of the relative displacements, and a build only

@@ -151,12 +151,7 @@ RelativeRun run_lists(bool relative, double trusted_skin_factor) {
     for (int id = 0; id < n; ++id) wander[id] += sigma * Vec3{G(rng), G(rng), G(rng)};
     place(t);
     const geometry::Scene::Frame frame = scene.at(t);
-    MoveBounds moved;
-    for (size_t i = 0; i < p.size(); ++i) {
-      const Vec3 dx = p.x[i] - nl.x_at_build[i];
-      moved.max2 = std::max(moved.max2, norm2(dx));
-      for (int a = 0; a < 3; ++a) moved.lo[a] = std::min(moved.lo[a], dx[a]), moved.hi[a] = std::max(moved.hi[a], dx[a]);
-    }
+    const MoveBounds moved = nl.moved_since_build(p);
     const double skin = nl.skin;
     nl.skin = trusted_skin_factor * skin;
     const bool rebuild = nl.needs_rebuild(moved, p.size(), frame, relative);
