@@ -16,14 +16,22 @@ namespace cgdem {
 
 namespace {
 
+// Cells are numbered along the axes fast[0] (fastest), fast[1], fast[2] (slowest): the axis
+// with the most cells is the slowest, so that the particles of the cells around a particle
+// (after the sort by cell) lie within n[fast[0]] x n[fast[1]] cells of it in memory.
 struct CellGrid {
   Vec3 lo;
   double h[3] = {1, 1, 1};
   int n[3] = {1, 1, 1};
+  int fast[3] = {0, 1, 2};
   void coords(const Vec3& x, int c[3]) const {
     for (int a = 0; a < 3; ++a) c[a] = std::clamp(static_cast<int>((x[a] - lo[a]) / h[a]), 0, n[a] - 1);
   }
-  long index(int cx, int cy, int cz) const { return cx + static_cast<long>(n[0]) * (cy + static_cast<long>(n[1]) * cz); }
+  // The index of the cell at a, b, c along fast[0], fast[1], fast[2].
+  long index_along(int a, int b, int c) const {
+    return a + static_cast<long>(n[fast[0]]) * (b + static_cast<long>(n[fast[1]]) * c);
+  }
+  long index(const int c[3]) const { return index_along(c[fast[0]], c[fast[1]], c[fast[2]]); }
 };
 
 constexpr int kNoImage = 13;  // image code (sx+1) + 3 (sy+1) + 9 (sz+1) with s = 0
@@ -109,6 +117,8 @@ CellGrid make_cell_grid(NeighborList& nl, const Particles& p) {
       g.n[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / range) + 1);
     }
   }
+  // Fewest cells fastest (ties in x, y, z order).
+  std::stable_sort(g.fast, g.fast + 3, [&g](int a, int b) { return g.n[a] < g.n[b]; });
   for (int c = 0; c < 27; ++c) {
     const int s[3] = {c % 3 - 1, (c / 3) % 3 - 1, c / 9 - 1};
     for (int a = 0; a < 3; ++a) nl.shift[c][a] = periodic.axis[a] ? s[a] * (periodic.hi[a] - periodic.lo[a]) : 0.0;
@@ -135,7 +145,7 @@ CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
   for (int i = 0; i < no; ++i) {
     int c[3];
     g.coords(p.x[i], c);
-    ++s.start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+    ++s.start[(cell[i] = g.index(c)) + 1];
   }
   std::partial_sum(s.start.begin(), s.start.end(), s.start.begin());
   s.order.resize(np);
@@ -147,7 +157,7 @@ CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
     for (int i = no; i < np; ++i) {
       int c[3];
       g.coords(p.x[i], c);
-      ++s.ghost_start[(cell[i] = g.index(c[0], c[1], c[2])) + 1];
+      ++s.ghost_start[(cell[i] = g.index(c)) + 1];
     }
     std::partial_sum(s.ghost_start.begin(), s.ghost_start.end(), s.ghost_start.begin());
     s.ghost_in.resize(np - no);
@@ -194,30 +204,35 @@ struct PairSearch {
     const Vec3& x0 = p.x[i];
     int c[3];
     g.coords(x0, c);
-    // A row of up to three cells along x that needs no periodic image holds consecutive
-    // cell indices, so its owned particles are one range of the sorted order.
-    const bool x_unwrapped = !nl.periodic.axis[0] || (c[0] >= 1 && c[0] <= g.n[0] - 2);
-    const int xa = std::max(c[0] - 1, 0), xb = std::min(c[0] + 1, g.n[0] - 1);
-    for (int dz = -1; dz <= 1; ++dz) {
-      int cz = c[2] + dz, sz = 0;
-      if (!wrap(2, cz, sz)) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        int cy = c[1] + dy, sy = 0;
-        if (!wrap(1, cy, sy)) continue;
-        if (x_unwrapped) {
-          const int code = 1 + 3 * (sy + 1) + 9 * (sz + 1);
-          owned(i, x0, cells.start[g.index(xa, cy, cz)], cells.start[g.index(xb, cy, cz) + 1], code, visit);
+    const int fa = g.fast[0], fb = g.fast[1], fc = g.fast[2];  // fastest .. slowest axis
+    // A row of up to three cells along the fastest axis that needs no periodic image holds
+    // consecutive cell indices, so its owned particles are one range of the sorted order.
+    const bool row_unwrapped = !nl.periodic.axis[fa] || (c[fa] >= 1 && c[fa] <= g.n[fa] - 2);
+    const int ra = std::max(c[fa] - 1, 0), rb = std::min(c[fa] + 1, g.n[fa] - 1);
+    int cell[3], img[3];  // the visited cell and its image along each axis (-1, 0, 1)
+    auto code = [&img] { return (img[0] + 1) + 3 * (img[1] + 1) + 9 * (img[2] + 1); };
+    for (int dc = -1; dc <= 1; ++dc) {
+      cell[fc] = c[fc] + dc, img[fc] = 0;
+      if (!wrap(fc, cell[fc], img[fc])) continue;
+      for (int db = -1; db <= 1; ++db) {
+        cell[fb] = c[fb] + db, img[fb] = 0;
+        if (!wrap(fb, cell[fb], img[fb])) continue;
+        if (row_unwrapped) {
+          img[fa] = 0;
+          const int k = code();
+          owned(i, x0, cells.start[g.index_along(ra, cell[fb], cell[fc])],
+                cells.start[g.index_along(rb, cell[fb], cell[fc]) + 1], k, visit);
           if (no < np)
-            for (int cx = xa; cx <= xb; ++cx) ghosts(i, x0, g.index(cx, cy, cz), code, visit);
+            for (int r = ra; r <= rb; ++r) ghosts(i, x0, g.index_along(r, cell[fb], cell[fc]), k, visit);
           continue;
         }
-        for (int dx = -1; dx <= 1; ++dx) {
-          int cx = c[0] + dx, sx = 0;
-          if (!wrap(0, cx, sx)) continue;
-          const int code = (sx + 1) + 3 * (sy + 1) + 9 * (sz + 1);
-          const long cc = g.index(cx, cy, cz);
-          owned(i, x0, cells.start[cc], cells.start[cc + 1], code, visit);
-          if (no < np) ghosts(i, x0, cc, code, visit);
+        for (int da = -1; da <= 1; ++da) {
+          cell[fa] = c[fa] + da, img[fa] = 0;
+          if (!wrap(fa, cell[fa], img[fa])) continue;
+          const int k = code();
+          const long cc = g.index(cell);
+          owned(i, x0, cells.start[cc], cells.start[cc + 1], k, visit);
+          if (no < np) ghosts(i, x0, cc, k, visit);
         }
       }
     }

@@ -1,8 +1,9 @@
 // Neighbour lists against an all-pairs search: every pair (and periodic image) within
 // r_i + r_j + skin is in the lists, once, under its lower index, with the partners of an
-// owner in increasing order, and nothing else is. Two parcel sizes; an open box, a box
-// periodic along x, and one periodic on every axis with only three cells per period (every
-// row of cells there needs an image).
+// owner in increasing order, and nothing else is. Two parcel sizes; an open box, boxes
+// periodic along one axis (the slowest, the middle and the fastest in the cells' order), and
+// one periodic on every axis with only three cells per period (every row of cells there
+// needs an image).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -97,6 +98,11 @@ TEST(NeighborLists, EqualAnAllPairsSearch) {
   check("periodic along x", {{-2 * d, 0, 0}, {12 * d, 9 * d, 7 * d}, {true, false, false}}, 1500);
   // 3.4 diameters per period: three cells (each at least d + skin = 1.1 d wide) per axis
   check("periodic, three cells per axis", {{0, 0, 0}, {3.4 * d, 3.4 * d, 3.4 * d}, {true, true, true}}, 60);
+  // The cells are numbered with the axis of fewest cells fastest: a tall box (z slowest)
+  // periodic along its middle axis, and a flat one whose fastest axis is periodic with three
+  // cells (every row along it needs an image).
+  check("tall, periodic along y", {{0, -2 * d, 0}, {6 * d, 5 * d, 14 * d}, {false, true, false}}, 1200);
+  check("flat, periodic along z", {{0, 0, 0}, {14 * d, 9 * d, 3.4 * d}, {false, false, true}}, 900);
 }
 
 // The test of relative displacements (NeighborList::needs_rebuild with `relative`): while it
