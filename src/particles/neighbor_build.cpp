@@ -175,17 +175,32 @@ struct OldLists {
   bool valid = false;  // the old lists cover the same particles
 };
 
-// Moves offset, partner, hist and the wall lists out of nl (they are rebuilt).
+// Moves offset, partner, hist and the wall lists out of nl (they are rebuilt into the
+// storage of nl.spare, whose contents are stale).
 OldLists take_lists(NeighborList& nl, int np) {
   OldLists o;
-  o.off.swap(nl.offset);
-  o.partner.swap(nl.partner);
-  o.hist.swap(nl.hist);
-  o.woff.swap(nl.wall_offset);
-  o.wpart.swap(nl.wall_part);
-  o.whist.swap(nl.wall_hist);
+  auto take = [](auto& old, auto& current, auto& spare) {
+    old.swap(current);
+    current.swap(spare);
+  };
+  take(o.off, nl.offset, nl.spare.offset);
+  take(o.partner, nl.partner, nl.spare.partner);
+  take(o.hist, nl.hist, nl.spare.hist);
+  take(o.woff, nl.wall_offset, nl.spare.wall_offset);
+  take(o.wpart, nl.wall_part, nl.spare.wall_part);
+  take(o.whist, nl.wall_hist, nl.spare.wall_hist);
   o.valid = o.off.size() == static_cast<size_t>(np) + 1;
   return o;
+}
+
+// Keeps the old lists' storage in nl.spare for the next build.
+void keep_as_spare(NeighborList& nl, OldLists& o) {
+  nl.spare.offset.swap(o.off);
+  nl.spare.partner.swap(o.partner);
+  nl.spare.hist.swap(o.hist);
+  nl.spare.wall_offset.swap(o.woff);
+  nl.spare.wall_part.swap(o.wpart);
+  nl.spare.wall_hist.swap(o.whist);
 }
 
 // The 27 cells around owned particle i: visit(j, image code) for every partner j within
@@ -267,6 +282,17 @@ struct PairSearch {
   }
 };
 
+// The history of the pair of old indices oi, oj in the old lists, in the frame of oi
+// (empty when the pair was not listed).
+contact::History carried_history(const OldLists& old, int oi, int oj) {
+  if (oi < oj) {
+    const auto* h = find_history(old.off, old.partner, old.hist, oi, oj);
+    return h ? *h : contact::History{};
+  }
+  const auto* h = find_history(old.off, old.partner, old.hist, oj, oi);
+  return h ? h->flipped() : contact::History{};
+}
+
 // Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
 // (each owner's partners in increasing index), image, and hist: the history of the same
 // pair in the old lists, by old indices, stored under the lower of the two and flipped
@@ -292,7 +318,7 @@ void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& o
       const int ne = nl.offset[np];
       nl.partner.resize(ne);
       nl.image.resize(ne);
-      nl.hist.assign(ne, contact::History{});
+      nl.hist.resize(ne);  // stale storage (nl.spare): every entry is written below
     }  // (implicit barrier: the offsets and sizes are set for every thread)
     size_t k = 0;
 #pragma omp for schedule(static)
@@ -300,13 +326,7 @@ void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& o
       for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
         nl.partner[e] = found[k].first;
         nl.image[e] = static_cast<uint8_t>(found[k].second);
-        if (!old.valid) continue;
-        const int oi = order[i], oj = order[found[k].first];
-        if (oi < oj) {
-          if (const auto* h = find_history(old.off, old.partner, old.hist, oi, oj)) nl.hist[e] = *h;
-        } else {
-          if (const auto* h = find_history(old.off, old.partner, old.hist, oj, oi)) nl.hist[e] = h->flipped();
-        }
+        nl.hist[e] = old.valid ? carried_history(old, order[i], order[found[k].first]) : contact::History{};
       }
   }
 }
@@ -411,7 +431,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
     for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
   const CellGrid grid = make_cell_grid(*this, p);
   const CellOrder cells = sort_by_cell(p, grid, no);
-  const OldLists old = take_lists(*this, np);
+  OldLists old = take_lists(*this, np);
   find_pairs(*this, PairSearch{p, grid, cells, *this, no, np}, cells.order, old);
   std::vector<std::pair<int64_t, int>> by_id;  // an empty `incoming` costs nothing
   if (!incoming.empty()) by_id = index_by_id(p.id);
@@ -423,6 +443,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   incoming.walls.clear();
   x_at_build = p.x;
   body_offset_at_build = walls.offset;
+  keep_as_spare(*this, old);
 }
 
 }  // namespace cgdem

@@ -103,6 +103,14 @@ struct NeighborList {
   // Particle-wall candidates (CSR over wall parts).
   std::vector<int> wall_offset, wall_part;
   std::vector<contact::History> wall_hist;
+  // Build scratch: the storage of the lists before last, which the next build() fills
+  // again instead of allocating. At 540,000 particles the pair histories alone take
+  // 240 MB; a fresh array of that size comes from the system at every build, and its
+  // pages are faulted in and zeroed one by one. Contents meaningless; not saved.
+  struct Spare {
+    std::vector<int> offset, partner, wall_offset, wall_part;
+    std::vector<contact::History> hist, wall_hist;
+  } spare;
   // State at the last build, for the rebuild criterion.
   std::vector<Vec3> x_at_build;
   std::vector<Vec3> body_offset_at_build;
