@@ -149,6 +149,10 @@ class DemSolver {
   // built from the same case (species, material, walls).
   void save(io::ArchiveWriter& w) const;
   void load(io::ArchiveReader& r);
+  // The lists held now may be incomplete for this solver's skin (loaded from a run with
+  // another skin or other parcel sizes): the next step rebuilds them before it evaluates a
+  // contact. Forces already computed stay valid.
+  void rebuild_lists_at_next_step() { nl_.x_at_build.clear(); }
   // Continues a run from a state handed out parcel by parcel (a checkpoint written on any
   // number of MPI ranks, parallel/portable_state.hpp): the particles become `parcels`,
   // whose force and torque are those of the checkpoint's step, `histories` wait in

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -39,6 +40,26 @@ std::vector<std::string> changed_lines(const std::string& stored, const std::str
   for (const auto& l : b)
     if (!a.count(l)) diff.push_back(l);
   return diff;
+}
+
+// The lines of the tables [particles], [particles.*] and [[particles.*]] of a resolved
+// configuration, in order: what decides the neighbour-list skin (its value, or a tenth of
+// the largest parcel diameter).
+std::string particles_tables(const std::string& config) {
+  std::istringstream in(config);
+  std::string out;
+  bool inside = false;
+  for (std::string l; std::getline(in, l);) {
+    // A table header is [name] or [[name]], name starting with a letter; a line of a
+    // multi-line array may also start with '[' (a nested array), never with a letter after it.
+    const size_t k = l.find_first_not_of('[');
+    if (k >= 1 && k <= 2 && k < l.size() && std::isalpha(static_cast<unsigned char>(l[k])) && l.back() == ']') {
+      const std::string name = l.substr(k);
+      inside = name.rfind("particles]", 0) == 0 || name.rfind("particles.", 0) == 0;
+    }
+    if (inside) out += l + '\n';
+  }
+  return out;
 }
 
 class ParticleRun final : public run::Run {
@@ -154,6 +175,16 @@ void ParticleRun::restore() {
   }
   from->restore(*s_, [&](io::ArchiveReader& r) { RunOutputs::load_observers(r, diag_, counters_); });
   written_on_ = from->ranks();
+  // The checkpoint's neighbour lists are complete for the skin they were built with. A case
+  // whose [particles] differ may have another skin: the first step rebuilds the lists
+  // (trusting them for a larger skin would miss contacts).
+  if (particles_tables(from->config()) != particles_tables(info_.resolved_config)) {
+    s_->dem().rebuild_lists_at_next_step();
+    if (comm_.root())
+      fmt::print(stderr, "cgdem: [particles] differs from the checkpoint's: the neighbour lists are rebuilt at the "
+                         "first step (skin {:g} m)\n",
+                 s_->dem().neighbor_list().skin);
+  }
   if (comm_.root() && air_.enabled && !from->with_air())
     fmt::print("cgdem: {} holds no air (a run in vacuum): the air starts at rest around its parcels at t = {:.6g} s\n",
                info_.restart, s_->dem().time());
