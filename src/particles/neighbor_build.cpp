@@ -175,32 +175,33 @@ struct OldLists {
   bool valid = false;  // the old lists cover the same particles
 };
 
+// The arrays that a build rebuilds, each with its place in the old lists and in nl.spare:
+// f(old, current, spare) for each of them.
+template <class F>
+void for_each_rebuilt(OldLists& o, NeighborList& nl, F&& f) {
+  f(o.off, nl.offset, nl.spare.offset);
+  f(o.partner, nl.partner, nl.spare.partner);
+  f(o.hist, nl.hist, nl.spare.hist);
+  f(o.woff, nl.wall_offset, nl.spare.wall_offset);
+  f(o.wpart, nl.wall_part, nl.spare.wall_part);
+  f(o.whist, nl.wall_hist, nl.spare.wall_hist);
+}
+
 // Moves offset, partner, hist and the wall lists out of nl (they are rebuilt into the
 // storage of nl.spare, whose contents are stale).
 OldLists take_lists(NeighborList& nl, int np) {
   OldLists o;
-  auto take = [](auto& old, auto& current, auto& spare) {
+  for_each_rebuilt(o, nl, [](auto& old, auto& current, auto& spare) {
     old.swap(current);
     current.swap(spare);
-  };
-  take(o.off, nl.offset, nl.spare.offset);
-  take(o.partner, nl.partner, nl.spare.partner);
-  take(o.hist, nl.hist, nl.spare.hist);
-  take(o.woff, nl.wall_offset, nl.spare.wall_offset);
-  take(o.wpart, nl.wall_part, nl.spare.wall_part);
-  take(o.whist, nl.wall_hist, nl.spare.wall_hist);
+  });
   o.valid = o.off.size() == static_cast<size_t>(np) + 1;
   return o;
 }
 
 // Keeps the old lists' storage in nl.spare for the next build.
 void keep_as_spare(NeighborList& nl, OldLists& o) {
-  nl.spare.offset.swap(o.off);
-  nl.spare.partner.swap(o.partner);
-  nl.spare.hist.swap(o.hist);
-  nl.spare.wall_offset.swap(o.woff);
-  nl.spare.wall_part.swap(o.wpart);
-  nl.spare.wall_hist.swap(o.whist);
+  for_each_rebuilt(o, nl, [](auto& old, auto&, auto& spare) { spare.swap(old); });
 }
 
 // The 27 cells around owned particle i: visit(j, image code) for every partner j within
