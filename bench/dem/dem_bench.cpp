@@ -83,7 +83,10 @@ int run_dem_bench(const DemBenchArgs& args) {
   dem.timers().reset();
   Stopwatch clock;
   const std::clock_t cpu0 = std::clock();
-  for (long k = 0; k < args.steps; ++k) dem.step();
+  for (long k = 0; k < args.steps; ++k) {
+    if (args.rebuild_every > 0 && k % args.rebuild_every == 0) dem.rebuild_lists_at_next_step();
+    dem.step();
+  }
   const double wall = clock.seconds();
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double rate = static_cast<double>(bed.size()) * args.steps / wall;

@@ -104,6 +104,11 @@ void add_bench_commands(CLI::App& app, BenchArgs& a) {
       ->check(CLI::PositiveNumber);
   bdem->add_option("--box-y", a.dem.box_y, "box length along y [m] (walls at 0 and there; default 0.006)")
       ->check(CLI::PositiveNumber);
+  bdem->add_option("--rebuild-every", a.dem.rebuild_every,
+                   "rebuild the neighbour lists every N steps whether or not the particles moved (default 0: when "
+                   "the rebuild test asks)")
+      ->check(CLI::NonNegativeNumber)
+      ->excludes(bdem->get_option("--stripped"));
   bdem->add_option("--law", a.dem.law,
                    fmt::format("contact law, with its default material: {} (default linear: the paper's Table 1)",
                                fmt::join(cgdem::contact::contact_law_names(), ", ")))
