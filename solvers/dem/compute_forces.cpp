@@ -96,8 +96,17 @@ class ForcePass {
 #pragma omp parallel if (n_ >= 512)
     {
       const int team = omp_get_num_threads(), tid = omp_get_thread_num();
+      // The same for every thread: direct_team changes only after the barriers below.
+      if (nl_.direct_team != team) {
 #pragma omp single
-      if (nl_.direct_team != team) assign_direct_partners(team);  // (implicit barrier)
+        assign_direct_partners(team);  // (implicit barrier)
+        // An entry whose partner changes kind must not leave an old share behind.
+        const long ne = static_cast<long>(nl_.f_partner.size());
+#pragma omp for schedule(static)
+        for (long k = 0; k < ne; ++k) nl_.f_partner[k] = nl_.t_partner[k] = Vec3{};
+#pragma omp single nowait
+        nl_.direct_team = team;
+      }
       BlockBuffers buf;
       for (int b = chunk(tid, team); b < chunk(tid + 1, team); ++b) evaluate_block(block(b), buf);
 #pragma omp barrier
@@ -114,11 +123,10 @@ class ForcePass {
     return {i0, i1, nl_.offset[i0], nl_.offset[i1]};
   }
 
-  // Reads first_owner, last_owner; writes direct (per particle), clears the stored shares.
-  // Particle j is direct when its lowest and highest owners (hence all of them) are in one
-  // thread's chunk: that thread then adds j's shares in entry order into f_acc, which is
-  // the sum pass 2 would form. The stored shares are cleared (an entry whose partner
-  // changes kind must not leave an old share behind). Runs once per team size and lists.
+  // Reads first_owner, last_owner; writes direct (per particle). Particle j is direct when
+  // its lowest and highest owners (hence all of them) are in one thread's chunk: that
+  // thread then adds j's shares in entry order into f_acc, which is the sum pass 2 would
+  // form. Runs once per team size and lists; run() then clears the stored shares.
   void assign_direct_partners(int team) {
     std::vector<int> chunk_of(nblocks_);
     for (int t = 0; t < team; ++t)
@@ -127,9 +135,6 @@ class ForcePass {
     for (int j = 0; j < n_; ++j)
       nl_.direct[j] = nl_.first_owner[j] < 0 ||
                       chunk_of[nl_.first_owner[j] / kBlock] == chunk_of[nl_.last_owner[j] / kBlock];
-    std::fill(nl_.f_partner.begin(), nl_.f_partner.end(), Vec3{});
-    std::fill(nl_.t_partner.begin(), nl_.t_partner.end(), Vec3{});
-    nl_.direct_team = team;
   }
 
   void evaluate_block(const Block& bl, BlockBuffers& buf) {

@@ -2,6 +2,7 @@
 // particles along it, the half pair lists with their histories carried over, the reverse
 // index and the wall candidates.
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <bit>
@@ -41,14 +42,6 @@ int find_entry(const std::vector<int>& off, const std::vector<int>& partner, int
   auto first = partner.begin() + off[owner], last = partner.begin() + off[owner + 1];
   auto it = std::lower_bound(first, last, other);
   return it == last || *it != other ? -1 : static_cast<int>(it - partner.begin());
-}
-
-// Entry of the old history, in old indices.
-const contact::History* find_history(const std::vector<int>& off, const std::vector<int>& partner,
-                                     const std::vector<contact::History>& xi,
-                         int owner, int other) {
-  const int e = find_entry(off, partner, owner, other);
-  return e < 0 ? nullptr : &xi[e];
 }
 
 // (id, local index) sorted by id, to find carried histories' particles; ids must be unique.
@@ -136,7 +129,7 @@ struct CellOrder {
 };
 
 // Reads x; writes the CellOrder and reorders p by it.
-CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
+CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no, Particles::ReorderScratch& scratch) {
   const int np = static_cast<int>(p.size());
   const long ncell = static_cast<long>(g.n[0]) * g.n[1] * g.n[2];
   CellOrder s;
@@ -164,7 +157,7 @@ CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no) {
     std::vector<int> gfill(s.ghost_start.begin(), s.ghost_start.end() - 1);
     for (int i = no; i < np; ++i) s.ghost_in[gfill[cell[i]]++] = i;
   }
-  p.reorder(s.order);
+  p.reorder(s.order, scratch);
   return s;
 }
 
@@ -286,26 +279,32 @@ struct PairSearch {
 // The history of the pair of old indices oi, oj in the old lists, in the frame of oi
 // (empty when the pair was not listed).
 contact::History carried_history(const OldLists& old, int oi, int oj) {
-  if (oi < oj) {
-    const auto* h = find_history(old.off, old.partner, old.hist, oi, oj);
-    return h ? *h : contact::History{};
-  }
-  const auto* h = find_history(old.off, old.partner, old.hist, oj, oi);
-  return h ? h->flipped() : contact::History{};
+  const int e = find_entry(old.off, old.partner, std::min(oi, oj), std::max(oi, oj));
+  if (e < 0) return contact::History{};
+  return oi < oj ? old.hist[e] : old.hist[e].flipped();
 }
 
 // Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
 // (each owner's partners in increasing index), image, and hist: the history of the same
 // pair in the old lists, by old indices, stored under the lower of the two and flipped
 // when the owner changed. One search per owner: each thread collects the pairs of its
-// block of owners (the same static blocks in both loops), then copies them to their
-// places once the prefix sum gives the offsets; every entry is written by one thread.
+// block of owners (the same static blocks in both loops), into storage kept between builds
+// (nl.spare.found), then copies them to their places once the prefix sum gives the
+// offsets; every entry is written by one thread.
 void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& order, const OldLists& old) {
   const int np = s.np, no = s.no;
   nl.offset.assign(np + 1, 0);
-  std::vector<std::pair<int, int>> found;  // per thread: (partner, image code), owner after owner
-#pragma omp parallel if (np >= 512) firstprivate(found)
+#pragma omp parallel if (np >= 512)
   {
+#pragma omp single
+    if (nl.spare.found.size() < static_cast<size_t>(omp_get_num_threads()))
+      nl.spare.found.resize(omp_get_num_threads());
+    // (implicit barrier)
+    // (partner, image code), owner after owner. A local vector: the threads' vector headers
+    // lie side by side in nl.spare.found, and pushing through them would share a cache line.
+    std::vector<std::pair<int, int>> found;
+    found.swap(nl.spare.found[omp_get_thread_num()]);
+    found.clear();
 #pragma omp for schedule(static)
     for (int i = 0; i < no; ++i) {
       const size_t first = found.size();
@@ -329,6 +328,7 @@ void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& o
         nl.image[e] = static_cast<uint8_t>(found[k].second);
         nl.hist[e] = old.valid ? carried_history(old, order[i], order[found[k].first]) : contact::History{};
       }
+    found.swap(nl.spare.found[omp_get_thread_num()]);  // kept for the next build
   }
 }
 
@@ -431,7 +431,7 @@ void NeighborList::build(Particles& p, const geometry::Scene::Frame& walls) {
   if (periodic.any())
     for (int i = 0; i < np; ++i) periodic.wrap(p.x[i]);
   const CellGrid grid = make_cell_grid(*this, p);
-  const CellOrder cells = sort_by_cell(p, grid, no);
+  const CellOrder cells = sort_by_cell(p, grid, no, spare.sort);
   OldLists old = take_lists(*this, np);
   find_pairs(*this, PairSearch{p, grid, cells, *this, no, np}, cells.order, old);
   std::vector<std::pair<int64_t, int>> by_id;  // an empty `incoming` costs nothing

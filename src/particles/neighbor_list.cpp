@@ -84,43 +84,50 @@ void NeighborList::derive() {
   const long ne = static_cast<long>(partner.size()), nr = static_cast<long>(rev_entry.size());
   const int np = static_cast<int>(offset.size()) - 1;
   const bool par = ne >= 4096;
-  long bad = rev_offset.size() != static_cast<size_t>(np) + 1 || rev_offset.front() != 0 || rev_offset.back() != nr;
-  for (int j = 0; j < np && !bad; ++j) bad = rev_offset[j + 1] < rev_offset[j];
+  // The loops below index by partner and by the entries' places in the reverse index.
+  long bad = np < 0 || rev_offset.size() != static_cast<size_t>(np) + 1 || rev_offset.front() != 0 ||
+             rev_offset.back() != nr || nr != ne || offset.front() != 0 || offset.back() != ne;
+  for (int j = 0; j < np && !bad; ++j) bad = rev_offset[j + 1] < rev_offset[j] || offset[j + 1] < offset[j];
 #pragma omp parallel for schedule(static) if (par) reduction(+ : bad)
-  for (long k = 0; k < nr; ++k) bad += rev_entry[k] < 0 || rev_entry[k] >= ne;
-  if (bad) throw Error("neighbour list: reverse index out of range (corrupt checkpoint?)");
+  for (long k = 0; k < nr; ++k) bad += rev_entry[k] < 0 || rev_entry[k] >= ne || partner[k] < 0 || partner[k] >= np;
+  if (bad) throw Error("neighbour list: entries or reverse index out of range (corrupt checkpoint?)");
   live.resize(ne);
   rev_pos.resize(ne);
   f_partner.resize(ne);
   t_partner.resize(ne);
-#pragma omp parallel if (par)
-  {
-#pragma omp for schedule(static) nowait
-    for (long e = 0; e < ne; ++e) {
-      live[e] = !hist[e].empty();
-      f_partner[e] = Vec3{};
-      t_partner[e] = Vec3{};
-    }
-#pragma omp for schedule(static)
-    for (long k = 0; k < nr; ++k) rev_pos[rev_entry[k]] = static_cast<int>(k);
-  }
-  // A partner's lowest and highest owners: the owners of its first and last entries (the
-  // reverse index lists them in increasing entry order, and entries go owner by owner).
   first_owner.resize(np);
   last_owner.resize(np);
   f_acc.resize(np);
   t_acc.resize(np);
-  auto owner_of = [this](int e) {
-    return static_cast<int>(std::upper_bound(offset.begin(), offset.end(), e) - offset.begin()) - 1;
-  };
-#pragma omp parallel for schedule(static) if (par)
-  for (int j = 0; j < np; ++j) {
-    const bool any = rev_offset[j + 1] > rev_offset[j];
-    first_owner[j] = any ? owner_of(rev_entry[rev_offset[j]]) : -1;
-    last_owner[j] = any ? owner_of(rev_entry[rev_offset[j + 1] - 1]) : -1;
-    f_acc[j] = Vec3{};
-    t_acc[j] = Vec3{};
+  // rev_pos first; then each partner's lowest and highest owners: the owners of its first
+  // and last entries (the reverse index lists them in increasing entry order, and entries
+  // go owner by owner). Exactly one entry is a partner's first, one its last.
+  long dup = 0;
+#pragma omp parallel if (par) reduction(+ : dup)
+  {
+#pragma omp for schedule(static) nowait
+    for (long e = 0; e < ne; ++e) live[e] = !hist[e].empty();
+#pragma omp for schedule(static) nowait
+    for (long e = 0; e < ne; ++e) rev_pos[e] = -1;
+#pragma omp for schedule(static)
+    for (int j = 0; j < np; ++j) {
+      first_owner[j] = last_owner[j] = -1;
+      f_acc[j] = Vec3{};
+      t_acc[j] = Vec3{};
+    }
+#pragma omp for schedule(static)
+    for (long k = 0; k < nr; ++k) rev_pos[rev_entry[k]] = static_cast<int>(k);
+#pragma omp for schedule(static)
+    for (int i = 0; i < np; ++i)
+      for (int e = offset[i]; e < offset[i + 1]; ++e) {
+        const int j = partner[e], k = rev_pos[e];
+        dup += k < rev_offset[j] || k >= rev_offset[j + 1];  // also k = -1: e not in the index
+        if (k == rev_offset[j]) first_owner[j] = i;
+        if (k == rev_offset[j + 1] - 1) last_owner[j] = i;
+      }
   }
+  if (dup) throw Error("neighbour list: the reverse index does not list each entry once under its partner (corrupt "
+                       "checkpoint?)");
   direct_team = 0;
 }
 

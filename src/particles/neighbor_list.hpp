@@ -31,6 +31,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "contact/history.hpp"
@@ -107,9 +108,12 @@ struct NeighborList {
   // again instead of allocating. At 540,000 particles the pair histories alone take
   // 240 MB; a fresh array of that size comes from the system at every build, and its
   // pages are faulted in and zeroed one by one. Contents meaningless; not saved.
+  // The same for the pair search's per-thread results and the sort of the particles.
   struct Spare {
     std::vector<int> offset, partner, wall_offset, wall_part;
     std::vector<contact::History> hist, wall_hist;
+    std::vector<std::vector<std::pair<int, int>>> found;  // per thread: (partner, image code)
+    Particles::ReorderScratch sort;
   } spare;
   // State at the last build, for the rebuild criterion.
   std::vector<Vec3> x_at_build;
@@ -136,8 +140,10 @@ struct NeighborList {
   // the next build() carries it over; clears the derived fields, and needs_rebuild() is
   // true until that build. Without lists (never built) it does nothing but reset `ghosts`.
   void retain(const std::vector<int>& keep, size_t n_added);
-  // Recomputes live, rev_pos and clears the force pass output (after build() or after
-  // the saved fields were loaded).
+  // Recomputes live, rev_pos, first_owner, last_owner and clears f_acc, t_acc (after
+  // build() or after the saved fields were loaded); throws when the lists or the reverse
+  // index are out of range. f_partner and t_partner are sized, not cleared: the force pass
+  // clears them before it first reads them (direct_team is reset).
   void derive();
   // How far the particles moved since the last build (the first min(p.size(), built) of
   // them; DemSolver computes the same while it drifts them).

@@ -36,6 +36,17 @@ void Particles::reorder(const std::vector<int>& order) {
   for_each_field(*this, [&](auto& field) { apply(field, order); });
 }
 
+void Particles::reorder(const std::vector<int>& order, ReorderScratch& scratch) {
+  const long n = static_cast<long>(order.size());
+  for_each_field(*this, [&](auto& field) {
+    auto& b = std::get<std::remove_reference_t<decltype(field)>>(scratch);
+    b.resize(n);
+#pragma omp parallel for schedule(static) if (n >= 4096)
+    for (long i = 0; i < n; ++i) b[i] = field[order[i]];
+    field.swap(b);
+  });
+}
+
 void Particles::append(const Particles& other) {
   for_each_field(*this, other, [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); });
 }

@@ -37,6 +37,13 @@ struct Particles {
   // Reorder every field: new index i takes the particle at old index order[i]. Particles
   // not listed in `order` are dropped.
   void reorder(const std::vector<int>& order);
+  // Storage the reorder gathers into, one array per element type (after each field the
+  // field's old storage becomes the next one's). A caller that sorts the particles again
+  // and again (the neighbour list builds) keeps it, and a sort then allocates nothing;
+  // contents meaningless.
+  using ReorderScratch = std::tuple<std::vector<int64_t>, std::vector<int>, std::vector<double>, std::vector<Vec3>>;
+  // The same, gathering in parallel (OpenMP) into `scratch`; the same result.
+  void reorder(const std::vector<int>& order, ReorderScratch& scratch);
   // Appends every parcel of `other` (all fields), in its order.
   void append(const Particles& other);
 };

@@ -12,8 +12,10 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <string>
 #include <tuple>
 
+#include "core/error.hpp"
 #include "geometry/scene.hpp"
 #include "geometry/shape.hpp"
 
@@ -164,9 +166,12 @@ TEST(NeighborLists, RebuildInSpareStorageEqualsAFreshBuild) {
     for (const contact::History& h : nl.hist) carried += !h.empty();
     for (const contact::History& h : nl.wall_hist) carried += !h.empty();
     if (round == 5) break;
-    // A history of its own for every entry and candidate; then every parcel moves.
-    for (size_t e = 0; e < nl.hist.size(); ++e)
+    // A history of its own for every entry and candidate (live, as the force pass leaves a
+    // contact with a history); then every parcel moves.
+    for (size_t e = 0; e < nl.hist.size(); ++e) {
       nl.hist[e] = {{1.0 + e, 2.0, 3.0}, {4.0, 5.0, 6.0 + round}, 7.0, 8.0};
+      nl.live[e] = 1;
+    }
     for (size_t e = 0; e < nl.wall_hist.size(); ++e) nl.wall_hist[e] = {{-1.0 - e, 0, 0}, {}, 1.0, 0};
     for (Vec3& x : p.x) x += 0.05 * d * Vec3{G(rng), G(rng), G(rng)};
   }
@@ -177,6 +182,87 @@ TEST(NeighborLists, RebuildInSpareStorageEqualsAFreshBuild) {
   EXPECT_GT(carried_before, 1000u);  // the histories compared are not all empty
   EXPECT_EQ(differing, 0);
   EXPECT_EQ(carried, 0u);  // the old lists did not fit: nothing carried, nothing stale
+}
+
+// derive() runs on lists read from a checkpoint and indexes by partner and by the entries'
+// places in the reverse index: lists that do not hold together must be refused with an
+// error, not followed out of range. 300 parcels, then one defect at a time.
+TEST(NeighborLists, DeriveRefusesInconsistentLists) {
+  const double d = test::powder(3.0).diameter();
+  Particles p = random_parcels(300, {{0, 0, 0}, {8 * d, 6 * d, 5 * d}, {false, false, false}}, 9);
+  NeighborList good;
+  good.skin = 0.1 * d;
+  good.build(p, geometry::Scene{}.at(0));
+  ASSERT_GT(good.partner.size(), 100u);
+  auto message = [&](auto&& spoil) {
+    NeighborList nl = good;
+    spoil(nl);
+    try {
+      nl.derive();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  const std::string partner_range = message([](NeighborList& nl) { nl.partner[7] = 300; });
+  const std::string twice = message([](NeighborList& nl) { nl.rev_entry[1] = nl.rev_entry[0]; });
+  const std::string offsets = message([](NeighborList& nl) { std::swap(nl.offset[10], nl.offset[200]); });
+  const std::string intact = message([](NeighborList&) {});
+  std::printf("[ lists ] partner out of range: %s\n[ lists ] an entry twice in the reverse index: %s\n"
+              "[ lists ] offsets out of order: %s\n[ lists ] intact: %s\n",
+              partner_range.c_str(), twice.c_str(), offsets.c_str(), intact.c_str());
+  EXPECT_NE(partner_range.find("out of range"), std::string::npos);
+  EXPECT_NE(twice.find("does not list each entry once"), std::string::npos);
+  EXPECT_NE(offsets.find("out of range"), std::string::npos);
+  EXPECT_EQ(intact, "(accepted)");
+}
+
+// The force pass skips the entries out of contact that are not live (compute_forces.cpp,
+// select_active), which is right only while an entry that is not live holds an empty
+// history (neighbor_list.hpp). The pass must keep that true: 343 parcels (l = 2) on a lattice with random velocities of up to 0.5 m/s fall
+// onto a floor with gravity and collide for 3,000 steps. After every step, each entry
+// that is not live must hold an empty history; the run must see contacts begin and end.
+TEST(NeighborLists, AnEntryThatIsNotLiveHoldsNoHistory) {
+  const Species sp = test::powder(2.0);
+  const double d = sp.diameter(), dt = 1e-6;
+  DemParams prm;
+  prm.dt = dt;
+  prm.domain = {{-1, -1, -1}, {1, 1, 1}};
+  DemSolver dem({sp}, contact::ContactModel{}, prm, test::floor_scene());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int id = 0;
+  for (int a = 0; a < 7; ++a)
+    for (int b = 0; b < 7; ++b)
+      for (int c = 0; c < 7; ++c)
+        dem.particles().add(id++, 0, dem.species()[0], {1.02 * d * a, 1.02 * d * b, 0.6 * d + 1.02 * d * c},
+                            0.29 * Vec3{U(rng), U(rng), U(rng)}, {});
+  long violations = 0, ended = 0, live_max = 0, steps = 0;
+  std::vector<uint8_t> had;  // per entry: a non-empty history after the step before
+  long builds = -1;
+  for (int k = 0; k < 3000; ++k) {
+    dem.step();
+    ++steps;
+    const NeighborList& nl = dem.neighbor_list();
+    long live = 0;
+    const bool same_lists = nl.builds == builds;
+    for (size_t e = 0; e < nl.hist.size(); ++e) {
+      const bool empty = nl.hist[e].empty();
+      violations += !nl.live[e] && !empty;
+      live += nl.live[e];
+      if (same_lists) ended += had[e] && empty;
+    }
+    had.resize(nl.hist.size());
+    for (size_t e = 0; e < nl.hist.size(); ++e) had[e] = !nl.hist[e].empty();
+    builds = nl.builds;
+    live_max = std::max(live_max, live);
+  }
+  std::printf("[ lists ] %ld steps, %ld list builds: up to %ld live entries, %ld contacts ended between builds, "
+              "%ld entries not live with a history (want 0)\n",
+              steps, builds, live_max, ended, violations);
+  EXPECT_GT(live_max, 100);
+  EXPECT_GT(ended, 50);
+  EXPECT_EQ(violations, 0);
 }
 
 // Lists loaded from a checkpoint are complete for the skin they were built with. Two l = 2
