@@ -7,6 +7,8 @@ overlapping the walls by 1 um (as a settled bed does), is tiled 3 x 2. Checked:
   * no two particles of different copies overlap (the gap keeps the seams free);
   * `cgdem bench dem` runs the tiled bed in that box, engine and stripped reference, and
     reports 720 particles and no list rebuild;
+  * with --rebuild-every 4 it builds the lists 6 times in 20 steps (the first build and 5
+    forced ones) and ends in the same state to round-off; --stripped refuses the option;
   * the same bed without --box-x/--box-y stops with one clear line naming the options;
   * tile_bed refuses a bed that overlaps its walls by more than 1 % of a diameter.
 
@@ -72,6 +74,28 @@ def main():
             fails.append(f"bench dem {extra} on the tiled bed: exit {code}: {out}")
         if not extra and "list builds 1," not in out:
             fails.append(f"the engine rebuilt its lists on the tiled bed: {out}")
+    # --rebuild-every 4: 5 forced builds in 20 steps (plus the first), and the same motion:
+    # the particles are sorted again but the contacts and their sums are the same.
+    states = []
+    for extra in ([], ["--rebuild-every", "4"]):
+        code, out = run([cgdem, "bench", "dem", "--bed", tiled, "--steps", "20"] + box + extra)
+        builds = re.search(r"list builds (\d+),", out)
+        state = re.search(r"state: E_kin (\S+) E_pot (\S+)", out)
+        print(f"bench dem {' '.join(extra)}: exit {code}, list builds {builds.group(1) if builds else None}, "
+              f"state {state.groups() if state else None}")
+        if code != 0 or not builds or not state:
+            fails.append(f"bench dem {extra}: exit {code}: {out}")
+            continue
+        states.append(tuple(float(v) for v in state.groups()))
+        want = 6 if extra else 1
+        if int(builds.group(1)) != want:
+            fails.append(f"bench dem {extra}: {builds.group(1)} list builds, expected {want}")
+    if len(states) == 2 and any(abs(a - b) > 1e-9 * abs(b) for a, b in zip(*states)):
+        fails.append(f"forced rebuilds changed the state beyond round-off: {states}")
+    code, out = run([cgdem, "bench", "dem", "--bed", tiled, "--steps", "20", "--stripped", "--rebuild-every", "4"] + box)
+    print(f"--stripped with --rebuild-every: exit {code}: {out.strip()}")
+    if code == 0 or "--rebuild-every" not in out:
+        fails.append(f"--stripped with --rebuild-every was not refused clearly: exit {code}: {out}")
     code, out = run([cgdem, "bench", "dem", "--bed", tiled, "--steps", "20"])
     print(f"without --box-x/--box-y: exit {code}: {out.strip()}")
     if code == 0 or "outside the box" not in out or "--box-x" not in out:
