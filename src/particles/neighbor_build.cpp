@@ -197,9 +197,9 @@ void keep_as_spare(NeighborList& nl, OldLists& o) {
   for_each_rebuilt(o, nl, [](auto& old, auto&, auto& spare) { spare.swap(old); });
 }
 
-// The 27 cells around owned particle i: visit(j, image code) for every partner j within
-// reach (r_i + r_j + skin), owned partners of higher index and the ghosts (all above i).
-// Ghosts own no entries. The order of the visits is not the lists' order: find_pairs sorts
+// The 27 cells around owned particle i: appends (j, image code) to `out` for every partner j
+// within reach (r_i + r_j + skin), owned partners of higher index and the ghosts (all above
+// i). Ghosts own no entries. The order of the pairs is not the lists' order: find_pairs sorts
 // each owner's pairs.
 struct PairSearch {
   const Particles& p;
@@ -208,8 +208,9 @@ struct PairSearch {
   const NeighborList& nl;
   int no, np;
 
-  template <class Visit>
-  void neighbours(int i, Visit&& visit) const {
+  using Found = std::vector<std::pair<int, int>>;
+
+  void neighbours(int i, Found& out) const {
     const Vec3& x0 = p.x[i];
     int c[3];
     g.coords(x0, c);
@@ -230,9 +231,9 @@ struct PairSearch {
           img[fa] = 0;
           const int k = code();
           owned(i, x0, cells.start[g.index_along(ra, cell[fb], cell[fc])],
-                cells.start[g.index_along(rb, cell[fb], cell[fc]) + 1], k, visit);
+                cells.start[g.index_along(rb, cell[fb], cell[fc]) + 1], k, out);
           if (no < np)
-            for (int r = ra; r <= rb; ++r) ghosts(i, x0, g.index_along(r, cell[fb], cell[fc]), k, visit);
+            for (int r = ra; r <= rb; ++r) ghosts(i, x0, g.index_along(r, cell[fb], cell[fc]), k, out);
           continue;
         }
         for (int da = -1; da <= 1; ++da) {
@@ -240,8 +241,8 @@ struct PairSearch {
           if (!wrap(fa, cell[fa], img[fa])) continue;
           const int k = code();
           const long cc = g.index(cell);
-          owned(i, x0, cells.start[cc], cells.start[cc + 1], k, visit);
-          if (no < np) ghosts(i, x0, cc, k, visit);
+          owned(i, x0, cells.start[cc], cells.start[cc + 1], k, out);
+          if (no < np) ghosts(i, x0, cc, k, out);
         }
       }
     }
@@ -257,21 +258,34 @@ struct PairSearch {
     c -= s * g.n[a];
     return true;
   }
-  // The owned particles ja .. jb - 1 of the sorted order, those above i.
-  template <class Visit>
-  void owned(int i, const Vec3& x0, int ja, int jb, int code, Visit& visit) const {
-    for (int j = std::max(ja, i + 1); j < jb; ++j) {
-      const double reach = p.radius[i] + p.radius[j] + nl.skin;
-      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+  // The owned particles ja .. jb - 1 of the sorted order, those above i. Without a branch
+  // per candidate (about one in five is within reach, in no pattern): each is written at
+  // the end of `out`, which advances past it when it is within reach. The arrays' pointers
+  // are read once (writes to `out` could otherwise alias them).
+  void owned(int i, const Vec3& x0, int ja, int jb, int code, Found& out) const {
+    const int j0 = std::max(ja, i + 1);
+    if (j0 >= jb) return;
+    const size_t n0 = out.size();
+    out.resize(n0 + static_cast<size_t>(jb - j0));
+    std::pair<int, int>* o = out.data() + n0;
+    const Vec3* x = p.x.data();
+    const double* radius = p.radius.data();
+    const Vec3 shift = nl.shift[code];
+    const double ri = radius[i], skin = nl.skin;
+    size_t n = 0;
+    for (int j = j0; j < jb; ++j) {
+      const double reach = ri + radius[j] + skin;
+      o[n] = {j, code};
+      n += norm2(x[j] + shift - x0) < reach * reach;
     }
+    out.resize(n0 + n);
   }
   // The ghosts in cell cc.
-  template <class Visit>
-  void ghosts(int i, const Vec3& x0, long cc, int code, Visit& visit) const {
+  void ghosts(int i, const Vec3& x0, long cc, int code, Found& out) const {
     for (int k = cells.ghost_start[cc]; k < cells.ghost_start[cc + 1]; ++k) {
       const int j = cells.ghost_in[k];
       const double reach = p.radius[i] + p.radius[j] + nl.skin;
-      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) visit(j, code);
+      if (norm2(p.x[j] + nl.shift[code] - x0) < reach * reach) out.emplace_back(j, code);
     }
   }
 };
@@ -308,7 +322,7 @@ void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& o
 #pragma omp for schedule(static)
     for (int i = 0; i < no; ++i) {
       const size_t first = found.size();
-      s.neighbours(i, [&](int j, int code) { found.emplace_back(j, code); });
+      s.neighbours(i, found);
       std::sort(found.begin() + static_cast<long>(first), found.end());
       nl.offset[i + 1] = static_cast<int>(found.size() - first);
     }
