@@ -88,8 +88,10 @@ void NeighborList::derive() {
   long bad = np < 0 || rev_offset.size() != static_cast<size_t>(np) + 1 || rev_offset.front() != 0 ||
              rev_offset.back() != nr || nr != ne || offset.front() != 0 || offset.back() != ne;
   for (int j = 0; j < np && !bad; ++j) bad = rev_offset[j + 1] < rev_offset[j] || offset[j + 1] < offset[j];
+  if (!bad) {  // (nr = ne: partner[k] is read within its bounds)
 #pragma omp parallel for schedule(static) if (par) reduction(+ : bad)
-  for (long k = 0; k < nr; ++k) bad += rev_entry[k] < 0 || rev_entry[k] >= ne || partner[k] < 0 || partner[k] >= np;
+    for (long k = 0; k < nr; ++k) bad += rev_entry[k] < 0 || rev_entry[k] >= ne || partner[k] < 0 || partner[k] >= np;
+  }
   if (bad) throw Error("neighbour list: entries or reverse index out of range (corrupt checkpoint?)");
   live.resize(ne);
   rev_pos.resize(ne);

@@ -207,13 +207,16 @@ TEST(NeighborLists, DeriveRefusesInconsistentLists) {
   const std::string partner_range = message([](NeighborList& nl) { nl.partner[7] = 300; });
   const std::string twice = message([](NeighborList& nl) { nl.rev_entry[1] = nl.rev_entry[0]; });
   const std::string offsets = message([](NeighborList& nl) { std::swap(nl.offset[10], nl.offset[200]); });
+  const std::string shorter = message([](NeighborList& nl) { nl.partner.pop_back(), nl.hist.pop_back(); });
   const std::string intact = message([](NeighborList&) {});
   std::printf("[ lists ] partner out of range: %s\n[ lists ] an entry twice in the reverse index: %s\n"
-              "[ lists ] offsets out of order: %s\n[ lists ] intact: %s\n",
-              partner_range.c_str(), twice.c_str(), offsets.c_str(), intact.c_str());
+              "[ lists ] offsets out of order: %s\n[ lists ] one entry fewer than the index: %s\n"
+              "[ lists ] intact: %s\n",
+              partner_range.c_str(), twice.c_str(), offsets.c_str(), shorter.c_str(), intact.c_str());
   EXPECT_NE(partner_range.find("out of range"), std::string::npos);
   EXPECT_NE(twice.find("does not list each entry once"), std::string::npos);
   EXPECT_NE(offsets.find("out of range"), std::string::npos);
+  EXPECT_NE(shorter.find("out of range"), std::string::npos);
   EXPECT_EQ(intact, "(accepted)");
 }
 
