@@ -23,17 +23,9 @@ void Particles::add(int64_t pid, int sp, const Species& s, const Vec3& pos, cons
   w_fluid.push_back(0);
 }
 
-namespace {
-template <class T>
-void apply(std::vector<T>& a, const std::vector<int>& order) {
-  std::vector<T> b(order.size());
-  for (size_t i = 0; i < order.size(); ++i) b[i] = a[order[i]];
-  a.swap(b);
-}
-}  // namespace
-
 void Particles::reorder(const std::vector<int>& order) {
-  for_each_field(*this, [&](auto& field) { apply(field, order); });
+  ReorderScratch scratch;
+  reorder(order, scratch);
 }
 
 void Particles::reorder(const std::vector<int>& order, ReorderScratch& scratch) {

@@ -35,14 +35,14 @@ struct Particles {
   size_t size() const { return x.size(); }
   void add(int64_t pid, int sp, const Species& s, const Vec3& pos, const Vec3& vel = {}, const Vec3& w = {});
   // Reorder every field: new index i takes the particle at old index order[i]. Particles
-  // not listed in `order` are dropped.
+  // not listed in `order` are dropped. Each field is gathered in parallel (OpenMP).
   void reorder(const std::vector<int>& order);
   // Storage the reorder gathers into, one array per element type (after each field the
   // field's old storage becomes the next one's). A caller that sorts the particles again
   // and again (the neighbour list builds) keeps it, and a sort then allocates nothing;
   // contents meaningless.
   using ReorderScratch = std::tuple<std::vector<int64_t>, std::vector<int>, std::vector<double>, std::vector<Vec3>>;
-  // The same, gathering in parallel (OpenMP) into `scratch`; the same result.
+  // The same, with storage the caller keeps.
   void reorder(const std::vector<int>& order, ReorderScratch& scratch);
   // Appends every parcel of `other` (all fields), in its order.
   void append(const Particles& other);
