@@ -2,12 +2,15 @@
 """Prints a Markdown table of our numbers beside the paper's (docs/model.md, section 6) for
 the given run folders, for README.md.
 
-Reads, per run: config.resolved.toml, metrics.csv, diagnostics.csv and, when it finds one,
-the run's log (RUN_DIR/../logs/<name>.log as run.sh writes it, or RUN_DIR.log) for the
-wall time (cgdem's "wall ... s" line), the simulated span it covers (from time.start, or
-from the time of a --restart) and the threads (the --threads of the logged command).
+Reads, per run: config.resolved.toml, metrics.csv, diagnostics.csv and, for the wall time,
+timings.csv (written by cgdem since December 2026: one group of rows per run, so a case run
+in pieces from checkpoints adds its pieces' walls). A run folder without it falls back on the
+run's log (RUN_DIR/../logs/<name>.log as run.sh writes it, or RUN_DIR.log): cgdem's "wall ...
+s" line, the simulated span it covers (from time.start, or from the time of a --restart) and
+the threads (the --threads of the logged command).
 """
 import argparse
+import csv
 import os
 import re
 
@@ -42,6 +45,49 @@ def log_facts(path):
     m = re.findall(r"restarting from \S+ at t = (\S+) s", text)
     facts["restart_t"] = float(m[-1]) if m else None
     return facts
+
+
+def timing_facts(run_dir):
+    """From RUN_DIR/timings.csv, the runs (pieces) that made the folder: their number, the summed
+    wall and set-up times, the span they cover, their threads and revisions, the peak memory;
+    None without the file."""
+    path = os.path.join(run_dir, "timings.csv")
+    if not os.path.isfile(path):
+        return None
+    with open(path, newline="") as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    whole = [r for r in rows if r["group"] == "run"]
+    wall = [r for r in whole if r["phase"] == "wall"]
+    if not wall:
+        return None
+    return {"pieces": len(wall),
+            "wall_s": sum(float(r["seconds_s"]) for r in wall),
+            "set_up_s": sum(float(r["seconds_s"]) for r in whole if r["phase"] == "set_up"),
+            "t_start": min(float(r["t_start_s"]) for r in wall),
+            "t_end": max(float(r["t_s"]) for r in wall),
+            "threads": sorted({int(r["threads"]) for r in wall}),
+            "revisions": list(dict.fromkeys(r["revision"][:7] for r in wall)),
+            "peak_gib": max(float(r["peak_rss_MiB"]) for r in wall) / 1024}
+
+
+def run_cell(run, m):
+    """The table's last row: how the run was made and what it cost."""
+    tf = timing_facts(run.dir)
+    if tf:
+        pieces = f" in {tf['pieces']} pieces" if tf["pieces"] > 1 else ""
+        return (f"commit{'s' if len(tf['revisions']) > 1 else ''} {', '.join(tf['revisions'])}, "
+                f"{'/'.join(str(t) for t in tf['threads'])} threads, wall {tf['wall_s']:.0f} s{pieces} "
+                f"(+ {tf['set_up_s']:.0f} s set-up) for t = {0.0 if abs(tf['t_start']) < 1e-9 else tf['t_start']:g}"
+                f" to {tf['t_end']:.2f} s, peak memory {tf['peak_gib']:.2f} GiB")
+    log = find_log(run)
+    facts = log_facts(log)
+    start = facts["restart_t"] if facts["restart_t"] is not None else run.config["time"]["start"]
+    if not log:
+        return f"commit {run.revision[:7]}, no log found (wall time, threads unknown)"
+    return (f"commit {(facts['revision'] or run.revision)[:7]}, "
+            f"{facts['threads'] if facts['threads'] else '?'} threads, "
+            f"wall {fmt(facts['wall_s'], '{:.0f}', ' s')} for t = {0.0 if abs(start) < 1e-9 else start:g}"
+            f" to {m.get('end_time_s', np.nan):.2f} s")
 
 
 def fmt(v, f="{:.3f}", unit=""):
@@ -95,13 +141,7 @@ def column(run):
         for key in ("full", "fill", "shoe"):
             ours[key] = cut
         ours["at_tp"] = fmt(at_tp * 1e3, "{:.3f}", " g") if np.isfinite(at_tp) else cut
-    log = find_log(run)
-    facts = log_facts(log)
-    start = facts["restart_t"] if facts["restart_t"] is not None else run.config["time"]["start"]
-    ours["run"] = f"commit {run.revision[:7]}, no log found (wall time, threads unknown)" if not log else (f"commit {(facts['revision'] or run.revision)[:7]}, "
-                   f"{facts['threads'] if facts['threads'] else '?'} threads, "
-                   f"wall {fmt(facts['wall_s'], '{:.0f}', ' s')} for t = {0.0 if abs(start) < 1e-9 else start:g}"
-                   f" to {m.get('end_time_s', np.nan):.2f} s")
+    ours["run"] = run_cell(run, m)
     ref = paper["impact"].get(run.case_index)
     theirs = {
         "front": f"{paper['front_time']:.3f} s",

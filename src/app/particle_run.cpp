@@ -1,6 +1,8 @@
 #include "app/particle_run.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -94,7 +96,8 @@ class ParticleRun final : public run::Run {
   void restore();
   void print_banner(double setup_seconds);
   void write(const OutputSchedule::Due& d);
-  void print_report(const run::Totals& t, long inside, const std::string& digest, const std::string& ranks);
+  void print_report(const run::Totals& t, long inside, const std::string& digest, const std::string& ranks,
+                    double wall);
 
   run::Domain& domain_;
   run::RunComm& comm_;
@@ -118,6 +121,9 @@ class ParticleRun final : public run::Run {
   run::StepDone last_;
   OutputSchedule::Due due_;
   long particle_steps_ = 0, n_present_ = 0;  // progress figure: parcels present at the start
+  // Where this run (piece) started, for timings.csv: time, steps, builds, fluid steps, set-up [s].
+  double t_first_ = 0, setup_seconds_ = 0;
+  long steps_first_ = 0, builds_first_ = 0, fluid_first_ = 0;
   int written_on_ = 1;                       // ranks that wrote the checkpoint
   bool tty_;
 };
@@ -140,8 +146,11 @@ bool ParticleRun::set_up() {
   }
   const run::Totals t = s_->totals();
   n_present_ = t.present;
-  print_banner(setup_clock.seconds());
+  setup_seconds_ = setup_clock.seconds();
+  print_banner(setup_seconds_);
   const double now = s_->dem().time();
+  t_first_ = now, steps_first_ = s_->dem().steps(), builds_first_ = s_->dem().neighbor_builds();
+  fluid_first_ = counters_.fluid_steps;
   // diagnostics.csv is sampled uniformly (run_schedule.hpp): its rows fall on a grid whose
   // interval is a whole multiple of at least the largest fluid step.
   schedule_ = std::make_unique<OutputSchedule>(c_, spec_, now, air_.enabled ? air_.coupled.dt_fluid_max : 0.0);
@@ -305,15 +314,34 @@ int ParticleRun::report() {
           ? fmt::format("state digest {:016x}", run::state_digest(dem, air_.enabled ? &s_->air() : nullptr))
           : fmt::format("portable state digest {:016x}", run::state_digest(s_->portable_state()));
   const std::string ranks = domain_.report(dem, air_.enabled ? s_->air_share().grid.cells() : 0);
-  comm_.together("final report", true, [&] { print_report(t, inside, digest, ranks); });
+  rusage use{};
+  getrusage(RUSAGE_SELF, &use);  // ru_maxrss in KiB (Linux)
+  const long peak_kib = comm_.min_max(static_cast<long>(use.ru_maxrss))[1];
+  comm_.together("final report", true, [&] {
+    const double wall = progress_->seconds();
+    print_report(t, inside, digest, ranks, wall);
+    RunPiece piece;
+    piece.t_start = t_first_, piece.t_end = dem.time();
+    piece.threads = omp_get_max_threads(), piece.ranks = comm_.size();
+    piece.wall = wall, piece.set_up = setup_seconds_;
+    piece.dem_steps = dem.steps() - steps_first_, piece.fluid_steps = counters_.fluid_steps - fluid_first_;
+    piece.list_builds = dem.neighbor_builds() - builds_first_, piece.particles = t.present;
+    piece.peak_rss_mib = peak_kib / 1024.0;
+    std::vector<std::pair<std::string, const PhaseTimers*>> groups = {{"dem", &dem.timers()}};
+    if (air_.enabled) {
+      groups.emplace_back("coupling", &s_->coupled().timers());
+      groups.emplace_back("air", &s_->fluid().timers());
+    }
+    groups.emplace_back("output", &timers_);
+    out_->timings(timings_rows(piece, groups));
+  });
   return 0;
 }
 
 void ParticleRun::print_report(const run::Totals& t, long inside, const std::string& digest,
-                               const std::string& ranks) {
+                               const std::string& ranks, double wall) {
   DemSolver& dem = s_->dem();
   const std::string rank0 = comm_.size() > 1 ? ", rank 0" : "";
-  const double wall = progress_->seconds();
   fmt::print("\n{}", dem.timers().table("per-phase time (DEM" + rank0 + ")"));
   double t_cpl = 0, t_air = 0;
   if (air_.enabled) {
@@ -339,7 +367,7 @@ void ParticleRun::print_report(const run::Totals& t, long inside, const std::str
              t.removed, inside, t.energy.mass);
   if (spec_.enabled) print_front(diag_, spec_);
   fmt::print("{} at t = {:.9g} s\n", digest, dem.time());
-  fmt::print("outputs in {}: energy.csv, metrics.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
+  fmt::print("outputs in {}: energy.csv, metrics.csv, timings.csv{}, particles.xdmf (+ particles_*.h5){}, last_good.h5, "
              "checkpoint.bin, config.resolved.toml\n",
              c_.output.dir, spec_.enabled ? ", diagnostics.csv, shoe_surface.csv, impacts.csv" : "",
              air_.enabled ? ", air_steps.csv, air.xdmf (+ air_*.h5)" : "");

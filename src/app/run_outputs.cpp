@@ -74,6 +74,7 @@ RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const Diagnost
     if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
     if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
     if (s_.with_air()) air_csv_ = open_csv("air_steps.csv", air_steps_columns());
+    timings_csv_ = open_csv("timings.csv", timings_columns());
     // A restart after the tracer was taken continues with the one its snapshots carry.
     if (ctx_.restart) read_tracer(*snapshots_, dir, s_.dem().steps(), tracer_id_, tracer_z_);
   });
@@ -256,6 +257,11 @@ void RunOutputs::finish(const run::Totals& totals) {
                       run_metrics(c_.output.dir, s_.dem().time(), totals.present, totals.energy, totals.removed,
                                   spec_.enabled, diag_.front_impact(), DieRun{spec_.die, s_.with_air()}));
   });
+}
+
+void RunOutputs::timings(const std::string& rows) {
+  timings_csv_->rows(rows);
+  timings_csv_->flush();
 }
 
 void RunOutputs::save_observers(io::ArchiveWriter& w, const DieDiagnostics& diag, const RunCounters& counters) {

@@ -59,6 +59,8 @@ class RunOutputs {
   void air_step(double t, const CoupledStepStats& st);
   // The end: closes the series, writes impacts.csv and metrics.csv (rank 0).
   void finish(const run::Totals& totals);
+  // timings.csv (run_schedule.hpp): this run's rows, on rank 0 (inside together()).
+  void timings(const std::string& rows);
 
   const std::string& series_comment() const { return comment_; }
   // The snapshot field that colours the parcels by where they were at output.tracer_time.
@@ -86,7 +88,7 @@ class RunOutputs {
   io::Attributes attrs_;
   std::unique_ptr<io::SnapshotSeries> snapshots_;
   std::unique_ptr<io::GridSnapshotSeries> air_snapshots_;
-  std::unique_ptr<io::CsvSeries> energy_, diag_csv_, surface_csv_, air_csv_;
+  std::unique_ptr<io::CsvSeries> energy_, diag_csv_, surface_csv_, air_csv_, timings_csv_;
   std::string air_rows_;  // of air_steps.csv, not yet written (rank 0)
   const Particles* gathered_ = nullptr;
   long gathered_step_ = -1;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -221,6 +222,63 @@ std::string air_steps_row(double t, const CoupledStepStats& st) {
                      f.pressure_iterations, f.pressure_converged ? 1 : 0, f.pressure_residual, f.max_divergence,
                      f.max_divergence_walls, d.iterations, d.evaluations, solved ? d.residual : none,
                      solved ? d.first_residual : none);
+}
+
+const io::CsvColumns& timings_columns() {
+  static const io::CsvColumns columns = {
+      {"t_s", "s", "simulated time the run reached (its end, or where it stopped normally)"},
+      {"t_start_s", "s", "simulated time the run started from (time.start, or the checkpoint's time of a --restart)"},
+      {"revision", "1", "text: the git revision of the cgdem that ran it"},
+      {"threads", "1", "OpenMP threads per process"},
+      {"ranks", "1", "MPI ranks (the phase times are rank 0's)"},
+      {"group", "1", "text: run (the whole), dem, coupling, air or output (the final report's per-phase tables)"},
+      {"phase", "1", "text: the phase (run: wall, set_up, other); the report's name as an identifier"},
+      {"seconds_s", "s", "wall-clock time spent in the phase during this run"},
+      {"calls", "1", "times the phase was entered during this run (run rows: 1)"},
+      {"dem_steps", "1", "DEM steps of this run"},
+      {"fluid_steps", "1", "fluid steps of this run (0 without air)"},
+      {"list_builds", "1", "neighbour-list builds of this run"},
+      {"particles", "1", "parcels present at the end of this run"},
+      {"peak_rss_MiB", "MiB", "peak resident memory of this run's process (the largest over the ranks)"},
+  };
+  return columns;
+}
+
+std::string phase_identifier(const std::string& name) {
+  std::string id;
+  bool gap = false;
+  for (size_t i = 0; i < name.size(); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(name[i]);
+    if (name.compare(i, 2, "->") == 0) {
+      id += id.empty() ? "to" : "_to";
+      gap = true, ++i;
+    } else if (std::isalnum(ch)) {
+      if (gap && !id.empty()) id += '_';
+      id += static_cast<char>(std::tolower(ch));
+      gap = false;
+    } else {
+      gap = true;
+    }
+  }
+  return id.empty() ? "unnamed" : id;
+}
+
+std::string timings_rows(const RunPiece& piece, const std::vector<std::pair<std::string, const PhaseTimers*>>& groups) {
+  const std::string head = fmt::format("{:.10g},{:.10g},{},{},{}", piece.t_end, piece.t_start, kGitRevision,
+                                       piece.threads, piece.ranks);
+  const std::string tail = fmt::format("{},{},{},{},{:.1f}", piece.dem_steps, piece.fluid_steps, piece.list_builds,
+                                       piece.particles, piece.peak_rss_mib);
+  auto row = [&](const std::string& group, const std::string& phase, double seconds, long calls) {
+    return fmt::format("{},{},{},{:.3f},{},{}\n", head, group, phase, seconds, calls, tail);
+  };
+  double in_groups = 0;
+  std::string rows;
+  for (const auto& [group, timers] : groups) {
+    for (const PhaseTimers::Entry& e : timers->entries()) rows += row(group, phase_identifier(e.name), e.seconds, e.calls);
+    in_groups += timers->total();
+  }
+  return row("run", "wall", piece.wall, 1) + row("run", "set_up", piece.set_up, 1) +
+         row("run", "other", piece.wall - in_groups, 1) + rows;
 }
 
 void print_fluid_counters(const RunCounters& c) {

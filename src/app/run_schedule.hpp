@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/dem_case.hpp"
@@ -139,5 +140,28 @@ void print_drag_counters(const DragCounters& c);
 // nonlinear solve (semi-implicit) iterations and evaluations are 0 and the residuals nan.
 const io::CsvColumns& air_steps_columns();
 std::string air_steps_row(double t, const CoupledStepStats& st);
+
+// timings.csv: where the wall-clock time of each run went, in long form: one row per phase
+// of the final report's per-phase tables (group dem, coupling, air, output) and three of
+// the whole run (group run: wall, the process's set-up before it, other = wall minus the
+// four groups), each row carrying what identifies its run (t_s = the simulated time it
+// reached, t_start_s, revision, threads, ranks) and that run's counts and peak memory.
+// Appended at the end of each run, so that a case run in pieces from checkpoints (one
+// output folder, --restart) sums its pieces: group by (group, phase) and add seconds_s. A
+// restart from an earlier checkpoint drops the rows of the runs that went beyond it (the
+// rule of every time series). Phase names are the tables' names as identifiers
+// ("air -> parcels" -> air_to_parcels).
+struct RunPiece {
+  double t_start = 0, t_end = 0;
+  int threads = 1, ranks = 1;
+  double wall = 0, set_up = 0;  // s
+  long dem_steps = 0, fluid_steps = 0, list_builds = 0, particles = 0;
+  double peak_rss_mib = 0;  // the largest over the ranks
+};
+const io::CsvColumns& timings_columns();
+std::string timings_rows(const RunPiece& piece, const std::vector<std::pair<std::string, const PhaseTimers*>>& groups);
+// A phase's name as an identifier: lower case, "->" read as "to", every other run of
+// characters that are not letters or digits one '_'.
+std::string phase_identifier(const std::string& name);
 
 }  // namespace cgdem::app

@@ -25,6 +25,12 @@ double PhaseTimers::total() const {
   return s;
 }
 
+std::vector<PhaseTimers::Entry> PhaseTimers::entries() const {
+  std::vector<Entry> out;
+  for (size_t i = 0; i < names_.size(); ++i) out.push_back({names_[i], seconds_[i], calls_[i]});
+  return out;
+}
+
 std::string PhaseTimers::table(const std::string& title) const {
   double tot = total();
   std::string out = fmt::format("{}\n  {:<22} {:>10} {:>10} {:>7}\n", title, "phase", "seconds", "calls", "%");

@@ -31,6 +31,13 @@ class PhaseTimers {
   void add(int id, double seconds) { seconds_[id] += seconds; ++calls_[id]; }
   double seconds(const std::string& name) const;
   double total() const;
+  // Every phase in the order of registration.
+  struct Entry {
+    std::string name;
+    double seconds;
+    long calls;
+  };
+  std::vector<Entry> entries() const;
   // Table: phase, seconds, calls, percent of the sum of all phases.
   std::string table(const std::string& title = "per-phase time") const;
   void reset();

@@ -17,7 +17,8 @@
 // m3 (m^3), m3_s (m^3/s), kg_m_s (kg m/s), as metrics.csv names its metrics. A
 // dimensionless column (a count, an index: particles, removed, inside_walls, impacts,
 // bubbles, bin, parcels, id; air_steps.csv's solver counts, flag and relative residual) has
-// the unit "1" and no suffix. '#' lines may appear anywhere
+// the unit "1" and no suffix; so has a text column (timings.csv's revision, group and phase,
+// each described as "text: ..."). '#' lines may appear anywhere
 // (every reader above skips them); a restarted run keeps the rows up to its restart time
 // and continues the file.
 #pragma once

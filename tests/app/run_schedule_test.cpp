@@ -3,8 +3,12 @@
 // that pass one get it interpolated, whatever their lengths.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "app/run_schedule.hpp"
 
@@ -87,4 +91,54 @@ TEST(OutputSchedule, InterpolatedRowIsLinearWithCountsFromTheNearerRow) {
   EXPECT_EQ(r.impacts, 4);
   EXPECT_EQ(r.bubbles, 1);
   EXPECT_EQ(interpolate_row(a, b, 1.75).impacts, 9);
+}
+
+// timings.csv: the report's phase names become identifiers, and a run's rows add up: the
+// run's "other" is its wall minus every group's phases, so the groups and "other" sum to
+// the wall exactly as the final report's "wall = DEM + coupling + air + output + other".
+TEST(Timings, RowsOfARunAddUpToItsWall) {
+  const std::pair<const char*, const char*> names[] = {
+      {"air -> parcels", "air_to_parcels"}, {"ghosts, face eps", "ghosts_face_eps"},
+      {"advection+viscous", "advection_viscous"}, {"IBM fractions", "ibm_fractions"},
+      {"neighbour lists", "neighbour_lists"}, {"  ", "unnamed"}};
+  for (const auto& [name, want] : names) {
+    std::printf("'%s' -> '%s' (want '%s')\n", name, phase_identifier(name).c_str(), want);
+    EXPECT_EQ(phase_identifier(name), want);
+  }
+  PhaseTimers dem, output;
+  dem.add(dem.id("contact forces"), 2.5), dem.add(dem.id("contact forces"), 0.5), dem.add(dem.id("integrate"), 1.0);
+  output.add(output.id("CSV series"), 0.25);
+  RunPiece piece;
+  piece.t_start = 0.01, piece.t_end = 0.03, piece.threads = 2, piece.wall = 5.0, piece.set_up = 1.5;
+  piece.dem_steps = 20000, piece.list_builds = 7, piece.particles = 100, piece.peak_rss_mib = 512.25;
+  const std::string rows = timings_rows(piece, {{"dem", &dem}, {"output", &output}});
+  std::printf("%s", rows.c_str());
+  const size_t fields = timings_columns().size();
+  double groups = 0, other = -1, wall = -1;
+  int n = 0;
+  for (size_t a = 0; a < rows.size(); ++n) {
+    const size_t b = rows.find('\n', a);
+    ASSERT_NE(b, std::string::npos);
+    std::vector<std::string> f;
+    for (size_t c = a; c <= b;) {
+      const size_t d = std::min(rows.find(',', c), b);
+      f.push_back(rows.substr(c, d - c));
+      c = d + 1;
+    }
+    ASSERT_EQ(f.size(), fields);
+    EXPECT_EQ(f[0], "0.03");
+    EXPECT_EQ(f[1], "0.01");
+    EXPECT_EQ(f[9], "20000");
+    EXPECT_EQ(f[13], "512.2");  // MiB, one decimal ({:.1f} rounds 512.25 half to even)
+    const double s = std::stod(f[7]);
+    if (f[5] == "run" && f[6] == "wall") wall = s;
+    if (f[5] == "run" && f[6] == "other") other = s;
+    if (f[5] != "run") groups += s;
+    if (f[6] == "contact_forces") EXPECT_EQ(f[8], "2");  // calls
+    a = b + 1;
+  }
+  std::printf("%d rows; groups %.3f s + other %.3f s = %.3f s, wall %.3f s\n", n, groups, other, groups + other, wall);
+  EXPECT_EQ(n, 6);  // wall, set_up, other, 2 DEM phases, 1 output phase
+  EXPECT_DOUBLE_EQ(groups + other, wall);
+  EXPECT_DOUBLE_EQ(other, 0.75);
 }

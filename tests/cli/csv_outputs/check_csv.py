@@ -8,7 +8,8 @@ and reads with numpy and pandas as is.
 
 For each file: numpy.genfromtxt(names=True, comments="#", delimiter=",") and
 pandas.read_csv(comment="#") must both read it, agree on the column names and on the number
-of rows, find only numbers (no object dtype, the same NaNs); the column line must be the
+of rows, find only numbers (no object dtype, the same NaNs; the text columns of TEXT below
+excepted, which must hold text and say so); the column line must be the
 first line; a "# cgdem <revision>, ..." line and the pointer to config.resolved.toml must be
 there; every column has one "# <name>: <unit>, <description>" line, and its name ends with
 the unit's suffix ('/' and ' ' written '_', '^' dropped) or, with unit 1, is one of the
@@ -28,7 +29,12 @@ import pandas as pd
 DIMENSIONLESS = {"particles", "removed", "inside_walls", "impacts", "bubbles", "bin", "parcels", "id",
                  # air_steps.csv: the solvers' counts, a flag and a relative residual
                  "pressure_iterations", "pressure_converged", "pressure_residual", "drag_iterations",
-                 "drag_evaluations"}
+                 "drag_evaluations",
+                 # timings.csv: counts of a run
+                 "threads", "ranks", "calls", "dem_steps", "fluid_steps", "list_builds"}
+# The only columns that hold text (unit 1, described as "text: ..."), per file: timings.csv is
+# in long form (one row per phase), so pandas reads it as is, numpy with dtype=None.
+TEXT = {"timings.csv": {"revision", "group", "phase"}}
 # metrics.csv: the SI suffixes its metric names end with (io/metrics.hpp).
 METRIC_SUFFIXES = ("_s", "_kg", "_m", "_Pa", "_J", "_kg_s", "_m_s", "_m3", "_m3_s", "_Hz", "_1_s", "_J_m3")
 
@@ -75,7 +81,10 @@ def check(path):
         if name == "metrics.csv" and not comments:
             continue
         if unit == "1":
-            if col not in DIMENSIONLESS and name != "metrics.csv":
+            if col in TEXT.get(name, ()):
+                if not described[col][1].startswith("text"):
+                    bad.append(f"{name}: column {col} holds text but its description does not say so")
+            elif col not in DIMENSIONLESS and name != "metrics.csv":
                 bad.append(f"{name}: column {col} has unit 1 but is not one of the dimensionless {sorted(DIMENSIONLESS)}")
         elif not col.endswith("_" + suffix(unit)):
             bad.append(f"{name}: column {col} in {unit} does not end with _{suffix(unit)}")
@@ -84,7 +93,8 @@ def check(path):
         warnings.simplefilter("error")  # numpy warns, and goes on, on a row it cannot split
         try:
             a = np.atleast_1d(np.genfromtxt(path, names=True, comments="#", delimiter=",",
-                                            dtype=None if name == "metrics.csv" else float, encoding="utf-8"))
+                                            dtype=None if name == "metrics.csv" or name in TEXT else float,
+                                            encoding="utf-8"))
         except Exception as e:  # noqa: BLE001
             return bad + [f"{name}: numpy.genfromtxt failed: {e}"]
     d = pd.read_csv(path, comment="#")
@@ -106,6 +116,8 @@ def check(path):
                 bad.append("metrics.csv: column value is not numeric")
         return bad
     for col in pd_names:
+        if col in TEXT.get(name, ()):  # (a revision of decimal digits only would read as a number)
+            continue
         if d[col].dtype == object:
             bad.append(f"{name}: column {col} does not parse as numbers (pandas dtype object)")
         elif col in np_names and int(np.isnan(a[col]).sum()) != int(d[col].isna().sum()):
