@@ -14,6 +14,7 @@ struct DemBenchArgs {
   // the engine: one thread, a bound on what the engine can reach on this machine.
   bool stripped = false;
   bool accounts = false;  // the stripped reference keeps the energy accounts too
+  bool no_accounts = false;  // the engine runs without its energy accounts (output.energy_accounts = false)
   // The contact law (a row of contact/laws.hpp) with its default material; the linear
   // law's is the paper's Table 1.
   std::string law = "linear";

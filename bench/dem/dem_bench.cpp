@@ -74,6 +74,7 @@ int run_dem_bench(const DemBenchArgs& args) {
   p.dt = 1e-6;
   p.gravity = {0, 0, -9.81};
   p.skin = 0.1 * d;  // as the LAMMPS script: neighbor 0.1 d
+  p.accounts = !args.no_accounts;
   p.domain = {{-0.01, -0.01, -0.01}, {lx + 0.01, ly + 0.01, 1.0}};
   DemSolver dem({s}, m, p, scene);
   for (size_t i = 0; i < bed.size(); ++i) dem.particles().add(static_cast<int64_t>(i), 0, s, bed.x[i]);
@@ -91,8 +92,8 @@ int run_dem_bench(const DemBenchArgs& args) {
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const double rate = static_cast<double>(bed.size()) * args.steps / wall;
   EnergyBudget e = dem.energy();
-  fmt::print("bench dem: {} particles of {:g} m, {} steps, {} thread(s), {:.3f} s, contact law {}\n", bed.size(), d,
-             args.steps, args.threads, wall, dem.contact_law());
+  fmt::print("bench dem: {} particles of {:g} m, {} steps, {} thread(s), {:.3f} s, contact law {}{}\n", bed.size(),
+             d, args.steps, args.threads, wall, dem.contact_law(), args.no_accounts ? ", no energy accounts" : "");
   fmt::print("neighbour entries {} ({:.1f} per particle), contacts {}, list builds {}, E_kin {:.4g} J\n",
              dem.pair_entries(), static_cast<double>(dem.pair_entries()) / bed.size(), dem.contact_count(),
              dem.neighbor_builds(), e.kinetic_translational + e.kinetic_rotational);

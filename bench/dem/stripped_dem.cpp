@@ -236,7 +236,7 @@ StrippedDem::StrippedDem(const DemSolver& from, std::vector<Plane> walls, bool a
     for (int a = 0; a < 3; ++a) to[3 + a].push_back(h.ft[a]);
     to[6].push_back(h.vn), to[7].push_back(h.ftvt);
   };
-  for (int e = 0; e < ne; ++e) take(hist_, nl.hist[e]);
+  for (int e = 0; e < ne; ++e) take(hist_, nl.hist.get(e));
   // Wall candidates: the engine's (particles within r + skin of a wall part at the
   // build), grouped by wall; the planes here are the scene's parts in the same order.
   walls_cand_.assign(walls_.size(), {});

@@ -1,12 +1,14 @@
 // Force pass of the DEM step: contacts with neighbours and walls, gravity, external force,
 // for the contact law of the case (contact/laws.hpp; the pass is instantiated per law).
 //   reads  x, v, omega, radius, species, f_ext, neighbour lists, wall frame
-//   writes force, torque, contact histories, per-particle energy accounts
+//   writes force, torque, contact histories, per-particle energy accounts (when kept:
+//          DemParams::accounts; without them the pass reads and writes only the springs
+//          xi of the pair histories and books no energy, and the forces are the same bits)
 //
 // Pass 1, per block of kBlock owners (evaluate_block):
 //   block_entries        the owner (and periodic shift) of every entry of the block
 //   select_active        the entries in contact or with a live history; their histories
-//                        copied to a block buffer
+//                        (or, without the accounts, their springs) copied to a block buffer
 //   evaluate_active      the vectorized pair kernel over those entries (pair_kernels.hpp)
 //   unbook_split_pairs   (MPI) a pair with a ghost is booked on the rank of its lower id
 //   store_active         histories and liveness back to the lists, partner shares out
@@ -52,6 +54,7 @@ struct BlockBuffers {
   std::vector<double> shift[3], ashift[3], zero;
   std::vector<double> damp, fric;
   std::vector<contact::History> h;
+  std::vector<Vec3> xi;
   std::vector<Vec3> fp, tp;
   BlockBuffers() { kstart.resize(kBlock + 1); }
   void fit(int ne, bool periodic) {
@@ -62,6 +65,7 @@ struct BlockBuffers {
     damp.resize(ne);
     fric.resize(ne);
     h.resize(ne);
+    xi.resize(ne);
     fp.resize(ne);
     tp.resize(ne);
     if (periodic)
@@ -81,7 +85,7 @@ struct OwnerSums {
   double e_damp = 0, e_fric = 0, w_wall = 0;
 };
 
-template <class Law>
+template <class Law, bool Accounts>
 class ForcePass {
  public:
   ForcePass(Particles& p, NeighborList& nl, const geometry::Scene::Frame& frame, const contact::LawTable<Law>& table,
@@ -142,7 +146,7 @@ class ForcePass {
     block_entries(bl, buf);
     const int na = select_active(bl, buf);
     evaluate_active(buf, na);
-    if (n_owned_ < n_) unbook_split_pairs(buf, na);
+    if (Accounts && n_owned_ < n_) unbook_split_pairs(buf, na);
     store_active(buf, na);
     for (int i = bl.i0; i < bl.i1; ++i) owner_sums(i, bl.i0, buf);
   }
@@ -162,8 +166,8 @@ class ForcePass {
 
   // Reads x, radius, live, hist; writes the active entries in entry order (buf.ent, own,
   // ashift), a copy of their histories (buf.h: whole records, cheaper than the kernel
-  // gathering them lane by lane) and buf.kstart, the first active entry of each owner.
-  // Returns their number.
+  // gathering them lane by lane; without the accounts buf.xi, their springs) and
+  // buf.kstart, the first active entry of each owner. Returns their number.
   int select_active(const Block& bl, BlockBuffers& buf) const {
     const double* zero = buf.zero.data();
     const double* shift_k[3] = {zero, zero, zero};
@@ -182,12 +186,20 @@ class ForcePass {
       buf.own[na] = buf.owner[e];
       na += buf.active[e];
     }
-    const contact::History* hist = nl_.hist.data();
+    const Vec3* xi = nl_.hist.xi.data();
+    const contact::HistoryStore::Rest* rest = nl_.hist.rest.data();
     std::fill(buf.kstart.begin(), buf.kstart.begin() + (bl.i1 - bl.i0) + 1, 0);
     constexpr int kAhead = 8;  // records prefetched ahead of the copy (its loads miss otherwise)
     for (int k = 0; k < na; ++k) {
-      if (k + kAhead < na) __builtin_prefetch(&hist[buf.ent[k + kAhead]]);
-      buf.h[k] = hist[buf.ent[k]];
+      const int e = buf.ent[k];
+      if (k + kAhead < na) {
+        __builtin_prefetch(&xi[buf.ent[k + kAhead]]);
+        if constexpr (Accounts) __builtin_prefetch(&rest[buf.ent[k + kAhead]]);
+      }
+      if constexpr (Accounts)
+        buf.h[k] = {xi[e], rest[e].ft, rest[e].s1, rest[e].s2};
+      else
+        buf.xi[k] = xi[e];
       ++buf.kstart[buf.own[k] - bl.i0 + 1];
     }
     for (int i = 0; i < bl.i1 - bl.i0; ++i) buf.kstart[i + 1] += buf.kstart[i];
@@ -204,13 +216,13 @@ class ForcePass {
     const double* s[3] = {zero, zero, zero};
     if (periodic_)
       for (int k = 0; k < 3; ++k) s[k] = buf.ashift[k].data();
-    const ActiveEntries act{buf.ent.data(), buf.own.data(), s[0],           s[1],           s[2],
-                            buf.h.data(),   buf.fp.data(),  buf.tp.data(),  buf.damp.data(), buf.fric.data(),
-                            buf.touching.data()};
+    const ActiveEntries act{buf.ent.data(),  buf.own.data(),  s[0],          s[1],
+                            s[2],            buf.h.data(),    buf.xi.data(), buf.fp.data(),
+                            buf.tp.data(),   buf.damp.data(), buf.fric.data(), buf.touching.data()};
     if (table_.species_count() == 1)
-      forces::pair_kernel_one_species<Law>(arrays_, act, na, dt_, table_.pair(0, 0));
+      forces::pair_kernel_one_species<Law, Accounts>(arrays_, act, na, dt_, table_.pair(0, 0));
     else
-      forces::pair_kernel_species<Law>(arrays_, act, na, dt_, table_, p_.species.data());
+      forces::pair_kernel_species<Law, Accounts>(arrays_, act, na, dt_, table_, p_.species.data());
   }
 
   // MPI runs: zeroes the energy of a pair with a ghost whose lower id is the ghost's (that
@@ -228,13 +240,20 @@ class ForcePass {
   void store_active(const BlockBuffers& buf, int na) {
     const int *partner = nl_.partner.data(), *rev_pos = nl_.rev_pos.data();
     const uint8_t* direct = nl_.direct.data();
-    contact::History* hist = nl_.hist.data();
+    Vec3* xi = nl_.hist.xi.data();
+    contact::HistoryStore::Rest* rest = nl_.hist.rest.data();
     uint8_t* live = nl_.live.data();
     Vec3 *f_acc = nl_.f_acc.data(), *t_acc = nl_.t_acc.data();
     Vec3 *f_share = nl_.f_partner.data(), *t_share = nl_.t_partner.data();
     for (int k = 0; k < na; ++k) {
       const int e = buf.ent[k], j = partner[e];
-      hist[e] = buf.h[k];
+      if constexpr (Accounts) {
+        const contact::History& h = buf.h[k];
+        xi[e] = h.xi;
+        rest[e] = {h.ft, h.s1, h.s2};
+      } else {
+        xi[e] = buf.xi[k];
+      }
       live[e] = static_cast<uint8_t>(buf.touching[k]);
       if (direct[j]) {
         f_acc[j] += buf.fp[k];
@@ -255,15 +274,19 @@ class ForcePass {
     for (int k = buf.kstart[i - i0]; k < buf.kstart[i - i0 + 1]; ++k) {
       s.f -= buf.fp[k];
       s.torque -= ri * buf.tp[k];  // (-r_i n) x F_t
-      s.e_damp += buf.damp[k];
-      s.e_fric += buf.fric[k];
+      if constexpr (Accounts) {
+        s.e_damp += buf.damp[k];
+        s.e_fric += buf.fric[k];
+      }
     }
     wall_contacts(i, s);
     p_.force[i] = s.f;
     p_.torque[i] = s.torque;
-    p_.e_damping[i] += s.e_damp;
-    p_.e_friction[i] += s.e_fric;
-    p_.w_walls[i] += s.w_wall;
+    if constexpr (Accounts) {
+      p_.e_damping[i] += s.e_damp;
+      p_.e_friction[i] += s.e_fric;
+      p_.w_walls[i] += s.w_wall;
+    }
   }
 
   // Owner i's wall candidates in order: reads the wall frame, writes wall_hist, adds to s.
@@ -283,7 +306,7 @@ class ForcePass {
       typename Law::History h = Law::unpack(nl_.wall_hist[e]);
       contact::Work w;
       if (dist >= ri) {  // the contact has just ended
-        Law::finish(c, nrm, v_rel, h, dt_, w);
+        Law::finish(c, nrm, v_rel, h, dt_, w);  // (clears h)
         nl_.wall_hist[e] = Law::pack(h);
         s.e_damp += w.damping_n;
         s.e_fric += w.friction;
@@ -338,7 +361,10 @@ void DemSolver::compute_forces() {
   std::visit(
       [this](const auto& table) {
         using Law = typename std::decay_t<decltype(table)>::Law;
-        ForcePass<Law>(p_, nl_, frame_, table, params_).run();
+        if (params_.accounts)
+          ForcePass<Law, true>(p_, nl_, frame_, table, params_).run();
+        else
+          ForcePass<Law, false>(p_, nl_, frame_, table, params_).run();
       },
       tables_);
 }

@@ -12,10 +12,12 @@ namespace cgdem {
 
 namespace {
 
-template <class Archive, class P, class N>
-void particle_and_list_fields(Archive&& io, P& p, N& nl) {
+// `io` takes each vector, `hist` the pair histories (written as whole records: the layout
+// does not depend on whether the run keeps the energy accounts).
+template <class Archive, class Hist, class P, class N>
+void particle_and_list_fields(Archive&& io, Hist&& hist, P& p, N& nl) {
   for_each_field(p, io);  // every Particles field, in declaration order
-  io(nl.offset), io(nl.partner), io(nl.image), io(nl.hist), io(nl.rev_offset), io(nl.rev_entry);
+  io(nl.offset), io(nl.partner), io(nl.image), hist(nl.hist), io(nl.rev_offset), io(nl.rev_entry);
   io(nl.wall_offset), io(nl.wall_part), io(nl.wall_hist), io(nl.x_at_build), io(nl.body_offset_at_build);
 }
 
@@ -30,7 +32,11 @@ void DemSolver::save(io::ArchiveWriter& w) const {
   w.put(t_), w.put(steps_), w.put(removed_), w.put(forces_valid_);
   w.put(removed_damping_), w.put(removed_friction_), w.put(removed_walls_), w.put(removed_fluid_);
   w.put(nl_.builds), w.put(nl_.shift);
-  particle_and_list_fields([&](const auto& v) { w.put_vector(v); }, p_, nl_);
+  particle_and_list_fields([&](const auto& v) { w.put_vector(v); },
+                           [&](const contact::HistoryStore& h) {
+                             w.put_generated<contact::History>(h.size(), [&h](size_t e) { return h.get(e); });
+                           },
+                           p_, nl_);
 }
 
 void DemSolver::load(io::ArchiveReader& r) {
@@ -44,7 +50,12 @@ void DemSolver::load(io::ArchiveReader& r) {
   r.get(t_), r.get(steps_), r.get(removed_), r.get(forces_valid_);
   r.get(removed_damping_), r.get(removed_friction_), r.get(removed_walls_), r.get(removed_fluid_);
   r.get(nl_.builds), r.get(nl_.shift);
-  particle_and_list_fields([&](auto& v) { r.get_vector(v); }, p_, nl_);
+  particle_and_list_fields([&](auto& v) { r.get_vector(v); },
+                           [&](contact::HistoryStore& h) {
+                             r.get_generated<contact::History>([&h](size_t n) { h.resize(n); },
+                                                               [&h](size_t e, const contact::History& x) { h.set(e, x); });
+                           },
+                           p_, nl_);
   const size_t n = p_.x.size();
   // A solver that has not stepped yet (a run's checkpoint at its start) has no lists: its
   // first step builds them, as it did in the run that wrote the checkpoint.

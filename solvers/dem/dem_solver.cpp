@@ -27,6 +27,7 @@ DemSolver::DemSolver(std::vector<Species> species, const contact::ContactModel& 
     params_.skin = 0.1 * dmax;
   }
   nl_.skin = params_.skin;
+  nl_.set_accounts(params_.accounts);
   nl_.periodic.axis = params_.periodic;
   nl_.periodic.lo = params_.domain.lo;
   nl_.periodic.hi = params_.domain.hi;
@@ -310,6 +311,7 @@ void DemSolver::resume(double t, long steps, long removed, const EnergyBudget& r
   p_ = std::move(parcels);
   NeighborList lists;  // none yet: the first step builds them
   lists.skin = nl_.skin;
+  lists.set_accounts(params_.accounts);
   lists.periodic = nl_.periodic;
   lists.builds = nl_.builds;
   lists.incoming = std::move(histories);

@@ -37,6 +37,10 @@ struct DemParams {
   geometry::Aabb domain;      // particles leaving it are removed and counted
   // Periodic axes: the domain is the period box on them (positions wrap, nothing is removed).
   std::array<bool, 3> periodic{false, false, false};
+  // The contact energy accounts (dissipated by the dashpots and by friction, work of the
+  // walls; output.energy_accounts): false drops them for speed. The motion is the same to
+  // the last bit; energy() then gives NaN for what it did not compute.
+  bool accounts = true;
 };
 
 // Totals over all particles (and those removed), summed in a fixed order.

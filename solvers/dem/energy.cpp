@@ -5,6 +5,8 @@
 //             (eq. 5) and the parcel's w, hold l^3 I_O w^2 / 2 = (I w^2 / 2) / l^2.
 #include "solvers/dem/dem_solver.hpp"
 
+#include <limits>
+
 namespace cgdem {
 
 // The energy held by the springs of this rank's contacts (a pair with a ghost counted on
@@ -20,7 +22,7 @@ double DemSolver::elastic_energy(const contact::LawTable<Law>& table) const {
       if (static_cast<size_t>(j) >= n && p.id[j] < p.id[i]) continue;
       const double overlap = p.radius[i] + p.radius[j] - norm(p.x[i] - nl_.partner_x(p, e));
       if (overlap <= 0) continue;
-      elastic += Law::elastic_energy(table.pair(p.species[i], p.species[j]), overlap, Law::unpack(nl_.hist[e]));
+      elastic += Law::elastic_energy(table.pair(p.species[i], p.species[j]), overlap, Law::unpack(nl_.hist.get(e)));
     }
     for (int e = nl_.wall_offset[i]; e < nl_.wall_offset[i + 1]; ++e) {
       const double overlap = p.radius[i] - frame_.part_distance(nl_.wall_part[e], p.x[i]);
@@ -55,6 +57,8 @@ EnergyBudget DemSolver::energy() const {
   b.dissipated_damping += removed_damping_;
   b.dissipated_friction += removed_friction_;
   b.work_walls += removed_walls_;
+  if (!params_.accounts)  // not computed (and balance() with them)
+    b.dissipated_damping = b.dissipated_friction = b.work_walls = std::numeric_limits<double>::quiet_NaN();
   return b;
 }
 

@@ -36,16 +36,19 @@ struct PairArrays {
 struct ActiveEntries {
   const int *ent, *own;
   const double *sx, *sy, *sz;   // the partner's periodic image shift
-  contact::History* hist;       // read and written: a copy of the entry's history
+  contact::History* hist;       // read and written: a copy of the entry's history (with the accounts)
+  Vec3* xi;                     // read and written: a copy of its spring (without them)
   Vec3 *f_partner, *t_partner;  // written: force on the partner, n x F_t
-  double *damp, *fric;          // written: energy dissipated in this step
+  double *damp, *fric;          // written: energy dissipated in this step (with the accounts)
   int* touching;                // written: 1 when the pair overlaps
 };
 
 // Active entries k = 0..na-1: per entry, the contact force of Law or, for a pair that has
 // just separated, the end of its contact (Law::finish); writes the partner's share, the
 // updated history and the energy dissipated. `params(i, j)` gives the contact parameters.
-template <class Law, class ParamsOf>
+// Without the Accounts only the spring xi is read and written (the force depends on it
+// alone, laws.hpp): the same forces and springs, no Law::finish, no energies.
+template <class Law, bool Accounts, class ParamsOf>
 inline __attribute__((always_inline)) void pair_entries(const PairArrays& a, const ActiveEntries& b, int na, double dt,
                                                         ParamsOf params) {
   const Vec3* __restrict x = a.x;
@@ -59,6 +62,7 @@ inline __attribute__((always_inline)) void pair_entries(const PairArrays& a, con
   const double* __restrict sy = b.sy;
   const double* __restrict sz = b.sz;
   contact::History* __restrict hist = b.hist;
+  Vec3* __restrict spring = b.xi;
   Vec3* __restrict f_partner = b.f_partner;
   Vec3* __restrict t_partner = b.t_partner;
   double* __restrict damp = b.damp;
@@ -72,41 +76,49 @@ inline __attribute__((always_inline)) void pair_entries(const PairArrays& a, con
     const double rsum = ri + rj;
     const double dist2 = norm2(d);
     const bool touching = dist2 < rsum * rsum;
-    const contact::History h0 = load(hist[k]);
-    const bool ended = !touching & !h0.empty();  // out of contact: the history ends
+    const contact::History h0 = Accounts ? load(hist[k]) : contact::History{load(spring[k]), Vec3{}, 0, 0};
     const double dist = cgdem_sqrt(dist2);
     const Vec3 nrm = (1.0 / dist) * d;  // from j to i
     // Velocity of i's contact point relative to j's.
     const Vec3 v_rel = (load(v[i]) - load(v[j])) - cross(ri * load(w[i]) + rj * load(w[j]), nrm);
     const typename Law::Params c = params(i, j);
-    typename Law::History h = Law::unpack(h0), h_end = Law::unpack(h0);
+    typename Law::History h = Law::unpack(h0);
     Vec3 f_t;
-    contact::Work wc, we;
+    contact::Work wc;
     const Vec3 fc = Law::force(c, nrm, rsum - dist, v_rel, h, dt, f_t, wc);
-    Law::finish(c, nrm, v_rel, h_end, dt, we);  // books the rest of the last step's work
     const Vec3 nxt = cross(nrm, f_t);
     store(f_partner[k], contact::select(touching, -fc, Vec3{}));
     // The partner's torque is (r_j n) x (-F_t) = -r_j n x F_t.
     store(t_partner[k], contact::select(touching, nxt, Vec3{}));
-    damp[k] = contact::select(touching, wc.damping_n, contact::select(ended, we.damping_n, 0.0));
-    fric[k] = contact::select(touching, wc.friction, contact::select(ended, we.friction, 0.0));
     touch[k] = touching;
-    // New history: the updated one, cleared (ended) or unchanged (no contact).
-    store(hist[k], select(touching, Law::pack(h), select(ended, Law::pack(h_end), h0)));
+    if constexpr (Accounts) {
+      const bool ended = !touching & !h0.empty();  // out of contact: the history ends
+      typename Law::History h_end = Law::unpack(h0);
+      contact::Work we;
+      Law::finish(c, nrm, v_rel, h_end, dt, we);  // books the rest of the last step's work
+      damp[k] = contact::select(touching, wc.damping_n, contact::select(ended, we.damping_n, 0.0));
+      fric[k] = contact::select(touching, wc.friction, contact::select(ended, we.friction, 0.0));
+      // New history: the updated one, cleared (ended) or unchanged (no contact).
+      store(hist[k], select(touching, Law::pack(h), select(ended, Law::pack(h_end), h0)));
+    } else {
+      // The updated spring, or none (an ended contact's is cleared; no contact had none).
+      store(spring[k], contact::select(touching, Law::pack(h).xi, Vec3{}));
+    }
   }
 }
 
 // The kernel: one species (parameters in registers) or several.
-template <class Law>
+template <class Law, bool Accounts>
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void pair_kernel_one_species(
     const PairArrays& a, const ActiveEntries& b, int na, double dt, typename Law::Params c) {
-  pair_entries<Law>(a, b, na, dt, [c](int, int) { return c; });
+  pair_entries<Law, Accounts>(a, b, na, dt, [c](int, int) { return c; });
 }
-template <class Law>
+template <class Law, bool Accounts>
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void pair_kernel_species(
     const PairArrays& a, const ActiveEntries& b, int na, double dt, const contact::LawTable<Law>& table,
     const int* species) {
-  pair_entries<Law>(a, b, na, dt, [&table, species](int i, int j) { return table.pair(species[i], species[j]); });
+  pair_entries<Law, Accounts>(a, b, na, dt,
+                              [&table, species](int i, int j) { return table.pair(species[i], species[j]); });
 }
 
 // Which entries e0..e1-1 (owner[e - e0]) need the kernel: those in contact now (the same

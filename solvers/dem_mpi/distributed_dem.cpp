@@ -110,8 +110,8 @@ void DistributedDem::drop_ghosts(Particles& p, NeighborList& nl) {
     for (size_t i = 0; i < n_owned; ++i)
       for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
         const int j = nl.partner[e];
-        if (static_cast<size_t>(j) < n_owned || nl.hist[e].empty()) continue;
-        const contact::History& h = nl.hist[e];
+        if (static_cast<size_t>(j) < n_owned || nl.hist.empty(e)) continue;
+        const contact::History h = nl.hist.get(e);
         nl.incoming.pairs.push_back(p.id[i] < p.id[j] ? CarriedPair{p.id[i], p.id[j], h}
                                                        : CarriedPair{p.id[j], p.id[i], h.flipped()});
         ++counters_.records_split;

@@ -147,6 +147,9 @@ std::vector<KeyDoc> run_keys() {
     {"output.max_speed", "m/s", "a faster parcel or air velocity stops the run (a blow-up)"},
     {"output.checkpoint_interval", "s", "simulated time between checkpoints (checkpoint.bin)"},
     {"output.compression", "1", "deflate level of the HDF5 snapshots (0: none)"},
+    {"output.energy_accounts", "",
+     "false: the contact energy accounts are not kept (faster; the same motion to the last bit); energy.csv then "
+     "says that its dissipation, wall-work and balance columns were not computed and holds nan in them"},
   };
 }
 

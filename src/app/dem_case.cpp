@@ -199,6 +199,7 @@ void read_output(const Section& os, DemCase& c) {
   c.output.tracer_time = os.number_or("tracer_time", 0.0, Range::any());
   c.output.compression = static_cast<int>(
       os.integer_or("compression", io::kDefaultCompression, Range::closed(0, io::kMaxCompression)));
+  c.dem.accounts = os.boolean_or("energy_accounts", true);
 }
 
 }  // namespace

@@ -4,8 +4,13 @@
 
 namespace cgdem::app {
 
-const io::CsvColumns& energy_csv_columns() {
-  static const io::CsvColumns columns = {
+bool needs_accounts(const std::string& column) {
+  return column == "E_diss_damping_J" || column == "E_diss_friction_J" || column == "W_walls_J" ||
+         column == "E_balance_J";
+}
+
+io::CsvColumns energy_csv_columns(bool accounts) {
+  io::CsvColumns columns = {
       {"t_s", "s", "time"},
       {"E_kin_trans_J", "J", "translational kinetic energy of the parcels, sum of m v^2 / 2"},
       {"E_kin_rot_J", "J", "rotational kinetic energy of the parcels, sum of I w^2 / 2 (in E_balance_J)"},
@@ -26,6 +31,11 @@ const io::CsvColumns& energy_csv_columns() {
       {"particles", "1", "parcels present"},
       {"removed", "1", "parcels removed so far (left the domain)"},
       {"inside_walls", "1", "parcel centres inside a wall (tunnelled)"}};
+  if (!accounts)
+    for (io::CsvColumn& c : columns)
+      if (needs_accounts(c.name))
+        c.description = "NOT COMPUTED in this run (output.energy_accounts = false; every row holds nan): " +
+                        c.description;
   return columns;
 }
 

@@ -12,8 +12,12 @@
 
 namespace cgdem::app {
 
-// t_s, E_kin_trans_J, ..., particles, removed, inside_walls.
-const io::CsvColumns& energy_csv_columns();
+// t_s, E_kin_trans_J, ..., particles, removed, inside_walls. Without the contact energy
+// accounts (output.energy_accounts = false) the columns they feed say that they were not
+// computed (their rows hold nan).
+io::CsvColumns energy_csv_columns(bool accounts = true);
+// The columns that need the accounts.
+bool needs_accounts(const std::string& column);
 
 // One row (no trailing newline) of the totals over the ranks (one process: its own).
 // `e` must already carry work_fluid (DemSolver::fluid_work()).

@@ -1,6 +1,6 @@
 // The cgdem command line.
 //   cgdem run CASE.toml [--set key.path=value ...] [--output DIR] [--threads N] [--restart CHECKPOINT] [--check]
-//   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]] [--box-x LX --box-y LY]
+//   cgdem bench dem --bed BED.csv [--steps N] [--threads T] [--stripped [--accounts]] [--no-accounts] [--box-x LX ...]
 //   cgdem bench pressure [--grid NXxNYxNZ] [--threads T] [--no-cholmod]
 //   cgdem bench fluid [--grid NXxNYxNZ] [--threads T] [--steps N] [--time-order 1|2] [--method M]
 //   cgdem keys [--output FILE] [--check CASE ...]     (the case keys' reference, app/case_keys.hpp)
@@ -100,6 +100,9 @@ void add_bench_commands(CLI::App& app, BenchArgs& a) {
                  "run the stripped reference of the same law instead of the engine (one thread; a bound)");
   bdem->add_flag("--accounts", a.dem.accounts, "with --stripped: keep the energy accounts as the engine does")
       ->needs(bdem->get_option("--stripped"));
+  bdem->add_flag("--no-accounts", a.dem.no_accounts,
+                 "the engine without its energy accounts (as output.energy_accounts = false: the same motion)")
+      ->excludes(bdem->get_option("--stripped"));
   bdem->add_option("--box-x", a.dem.box_x, "box length along x [m] (walls at 0 and there; default 0.010)")
       ->check(CLI::PositiveNumber);
   bdem->add_option("--box-y", a.dem.box_y, "box length along y [m] (walls at 0 and there; default 0.006)")

@@ -44,6 +44,18 @@ std::vector<std::string> changed_lines(const std::string& stored, const std::str
   return diff;
 }
 
+// output.energy_accounts of a resolved configuration (true when it does not say).
+bool energy_accounts_in(const std::string& config) {
+  std::istringstream in(config);
+  bool output = false;
+  for (std::string l; std::getline(in, l);) {
+    if (l.starts_with("[")) output = l == "[output]";
+    if (output && l.starts_with("energy_accounts") && l.find('=') != std::string::npos)
+      return l.find("false", l.find('=')) == std::string::npos;
+  }
+  return true;
+}
+
 // The lines of the tables [particles], [particles.*] and [[particles.*]] of a resolved
 // configuration, in order: what decides the neighbour-list skin (its value, or a tenth of
 // the largest parcel diameter).
@@ -182,6 +194,12 @@ void ParticleRun::restore() {
       fmt::print(stderr, "cgdem: warning: the case differs from the one that wrote {} in: {} (continuing)\n",
                  info_.restart, fmt::join(changed_lines(from->config(), info_.resolved_config), " | "));
   }
+  // The accounts are totals since the start: a run that did not keep them cannot take them
+  // up halfway, and energy.csv keeps one meaning per column.
+  if (const bool before = energy_accounts_in(from->config()); before != c_.dem.accounts)
+    throw Error(fmt::format("restart: {} was written with output.energy_accounts = {}, the case now says {}; "
+                            "continue with the same setting, or start again from the beginning",
+                            info_.restart, before, c_.dem.accounts));
   from->restore(*s_, [&](io::ArchiveReader& r) { RunOutputs::load_observers(r, diag_, counters_); });
   written_on_ = from->ranks();
   // The checkpoint's neighbour lists are complete for the skin they were built with. A case

@@ -9,6 +9,8 @@
 //   * select() and cgdem_sqrt(): what a law's force function may use and still vectorize.
 #pragma once
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "core/select.hpp"
 #include "core/vec3.hpp"
@@ -45,6 +47,64 @@ struct History {
   }
   // The same contact seen from the partner's side.
   History flipped() const { return {-xi, -ft, s1, s2}; }
+};
+
+// The records of many contacts, kept as two arrays: the tangential springs `xi`, which every
+// law's force reads and writes, and the other slots, which serve only the energy accounts
+// (the force and the new xi depend on xi alone; laws.hpp). A force pass without the accounts
+// (DemParams::accounts = false) touches only `xi`, 24 bytes a contact instead of 64, and
+// the store then keeps no other slots (`accounts` false: `rest` stays empty and reads as
+// zeros). A record is whole again where it leaves the lists (checkpoints, migration,
+// the portable state).
+struct HistoryStore {
+  struct Rest {
+    Vec3 ft;
+    double s1 = 0;
+    double s2 = 0;
+  };
+  std::vector<Vec3> xi;
+  std::vector<Rest> rest;  // empty when !accounts
+  bool accounts = true;
+
+  size_t size() const { return xi.size(); }
+  // Sizes both arrays (contents of new elements unspecified, as for a reused vector).
+  void resize(size_t n) {
+    xi.resize(n);
+    rest.resize(accounts ? n : 0);
+  }
+  void clear() { xi.clear(), rest.clear(); }
+  void swap(HistoryStore& o) {
+    xi.swap(o.xi), rest.swap(o.rest);
+    std::swap(accounts, o.accounts);
+  }
+  History get(size_t e) const {
+    if (!accounts) return {xi[e], Vec3{}, 0, 0};
+    const Rest& r = rest[e];
+    return {xi[e], r.ft, r.s1, r.s2};
+  }
+  void set(size_t e, const History& h) {
+    xi[e] = h.xi;
+    if (accounts) rest[e] = {h.ft, h.s1, h.s2};
+  }
+  void push_back(const History& h) {
+    xi.push_back(h.xi);
+    if (accounts) rest.push_back({h.ft, h.s1, h.s2});
+  }
+  void pop_back() {
+    xi.pop_back();
+    if (accounts) rest.pop_back();
+  }
+  void assign(size_t n, const History& h) {
+    resize(n);
+    for (size_t e = 0; e < n; ++e) set(e, h);
+  }
+  bool empty(size_t e) const { return get(e).empty(); }
+  // Every record, whole (for tests and tools; the engine reads the arrays).
+  std::vector<History> records() const {
+    std::vector<History> r(size());
+    for (size_t e = 0; e < r.size(); ++e) r[e] = get(e);
+    return r;
+  }
 };
 
 // Energy bookkeeping of one contact over one step.

@@ -13,9 +13,12 @@
 //   static double collision_time(const Material&, const OriginalPair&)  (time-step check)
 //   static Vec3 force(const Params&, n, delta, v_rel, History&, dt, Vec3& f_t, Work&)
 //              a pure function of its inputs, branch-free (the force pass vectorizes it),
-//              giving exactly the negated force from the partner's side
+//              giving exactly the negated force from the partner's side; the force and
+//              the new xi slot depend on the record's xi slot alone (the other slots feed
+//              only Work), so that a run without the energy accounts keeps only xi
+//              (history.hpp, HistoryStore) and moves exactly as one with them
 //   static void finish(const Params&, n, v_rel, History&, dt, Work&)  (contact ended)
-//   static double elastic_energy(const Params&, double delta, const History&)
+//   static double elastic_energy(const Params&, double delta, const History&)  (reads xi only)
 //   static Material read(const Section&)
 // and one row in kContactLaws below: its name, one line of documentation and its reader.
 // The force pass (solvers/dem/compute_forces.cpp), the energy budget, the tables, the

@@ -32,6 +32,18 @@ class ArchiveWriter {
     put<uint64_t>(sizeof(T));
     raw(v.data(), v.size() * sizeof(T));
   }
+  // n elements of T, element k being at(k): the layout of put_vector, without the vector.
+  template <class T, class At>
+  void put_generated(size_t n, At at) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put<uint64_t>(n);
+    put<uint64_t>(sizeof(T));
+    buf_.reserve(buf_.size() + n * sizeof(T));
+    for (size_t k = 0; k < n; ++k) {
+      const T x = at(k);
+      raw(&x, sizeof(T));
+    }
+  }
   void put_string(const std::string& s) {
     put<uint64_t>(s.size());
     raw(s.data(), s.size());
@@ -68,6 +80,20 @@ class ArchiveReader {
     if (n > (buf_.size() - pos_) / (size ? size : 1)) fail("truncated");
     v.resize(n);
     raw(v.data(), n * sizeof(T));
+  }
+  // What put_vector or put_generated wrote, element by element: size(n), then each(k, x).
+  template <class T, class Size, class Each>
+  void get_generated(Size size, Each each) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto n = get<uint64_t>(), bytes = get<uint64_t>();
+    if (bytes != sizeof(T)) fail("a record's element size differs (written by a different build?)");
+    if (n > (buf_.size() - pos_) / sizeof(T)) fail("truncated");
+    size(static_cast<size_t>(n));
+    for (size_t k = 0; k < n; ++k) {
+      T x;
+      raw(&x, sizeof(T));
+      each(k, x);
+    }
   }
   std::string get_string() {
     const auto n = get<uint64_t>();

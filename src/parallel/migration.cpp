@@ -111,8 +111,8 @@ std::vector<Buffer> pack_leaving(const Particles& p, const NeighborList& nl, std
   for (int i = 0; i < np; ++i) {
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int j = nl.partner[e];
-      if ((dest[i] < 0 && dest[j] < 0) || nl.hist[e].empty()) continue;
-      const CarriedPair c = carried(p, i, j, nl.hist[e]);  // nl.hist[e] is in the frame of i, the owner
+      if ((dest[i] < 0 && dest[j] < 0) || nl.hist.empty(e)) continue;
+      const CarriedPair c = carried(p, i, j, nl.hist.get(e));  // the record is in the frame of i, the owner
       if (dest[i] >= 0) pairs[dest[i]].push_back(c);
       if (dest[j] >= 0 && dest[j] != dest[i]) pairs[dest[j]].push_back(c);
     }
@@ -184,8 +184,8 @@ size_t apply_migration(Particles& p, NeighborList& nl, std::span<const int> dest
   for (int i = 0; i < np; ++i)
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int j = nl.partner[e];
-      if ((dest[i] < 0) == (dest[j] < 0) || nl.hist[e].empty()) continue;
-      nl.incoming.pairs.push_back(carried(p, i, j, nl.hist[e]));
+      if ((dest[i] < 0) == (dest[j] < 0) || nl.hist.empty(e)) continue;
+      nl.incoming.pairs.push_back(carried(p, i, j, nl.hist.get(e)));
     }
   std::vector<int> keep;
   keep.reserve(p.size());

@@ -60,13 +60,13 @@ PortableState portable_state(const Particles& p, const NeighborList& nl, size_t 
     for (int i = 0; i < static_cast<int>(p.size()); ++i) {
       for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
         const int j = nl.partner[e];
-        if (nl.hist[e].empty()) continue;
+        if (nl.hist.empty(e)) continue;
         const bool oi = i < no, oj = j < no;
         if (!oi && !oj) continue;  // two ghosts: another rank's pair
         const bool i_lower = p.id[i] < p.id[j];
         if (oi != oj && !(i_lower ? oi : oj)) continue;  // split pair: recorded by the lower id's rank
-        s.pairs.push_back(i_lower ? CarriedPair{p.id[i], p.id[j], nl.hist[e]}
-                                  : CarriedPair{p.id[j], p.id[i], nl.hist[e].flipped()});
+        s.pairs.push_back(i_lower ? CarriedPair{p.id[i], p.id[j], nl.hist.get(e)}
+                                  : CarriedPair{p.id[j], p.id[i], nl.hist.get(e).flipped()});
       }
       if (i >= no) continue;
       for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e)

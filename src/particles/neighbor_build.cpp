@@ -164,7 +164,8 @@ CellOrder sort_by_cell(Particles& p, const CellGrid& g, int no, Particles::Reord
 // The lists of the last build, in its (old) particle indices, for the history carry-over.
 struct OldLists {
   std::vector<int> off, partner, woff, wpart;
-  std::vector<contact::History> hist, whist;
+  contact::HistoryStore hist;
+  std::vector<contact::History> whist;
   bool valid = false;  // the old lists cover the same particles
 };
 
@@ -295,7 +296,8 @@ struct PairSearch {
 contact::History carried_history(const OldLists& old, int oi, int oj) {
   const int e = find_entry(old.off, old.partner, std::min(oi, oj), std::max(oi, oj));
   if (e < 0) return contact::History{};
-  return oi < oj ? old.hist[e] : old.hist[e].flipped();
+  const contact::History h = old.hist.get(e);
+  return oi < oj ? h : h.flipped();
 }
 
 // Half pair lists: reads the PairSearch; writes offset (count, then prefix sum), partner
@@ -340,7 +342,7 @@ void find_pairs(NeighborList& nl, const PairSearch& s, const std::vector<int>& o
       for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e, ++k) {
         nl.partner[e] = found[k].first;
         nl.image[e] = static_cast<uint8_t>(found[k].second);
-        nl.hist[e] = old.valid ? carried_history(old, order[i], order[found[k].first]) : contact::History{};
+        nl.hist.set(e, old.valid ? carried_history(old, order[i], order[found[k].first]) : contact::History{});
       }
     found.swap(nl.spare.found[omp_get_thread_num()]);  // kept for the next build
   }
@@ -353,7 +355,7 @@ void attach_incoming_pairs(NeighborList& nl, const std::vector<std::pair<int64_t
     const int a = local_index(by_id, c.id_a), b = local_index(by_id, c.id_b);
     if (a < 0 || b < 0 || a == b) continue;
     const int e = find_entry(nl.offset, nl.partner, std::min(a, b), std::max(a, b));
-    if (e >= 0) nl.hist[e] = a < b ? c.h : c.h.flipped();
+    if (e >= 0) nl.hist.set(e, a < b ? c.h : c.h.flipped());
   }
 }
 

@@ -22,6 +22,15 @@ void Periodicity::wrap(Vec3& x) const {
   }
 }
 
+void NeighborList::set_accounts(bool on) {
+  if (hist.accounts == on && spare.hist.accounts == on) return;
+  hist.clear();
+  spare.hist.clear();
+  hist.accounts = spare.hist.accounts = on;
+  offset.clear();  // no lists: the next step builds them (their histories were dropped)
+  x_at_build.clear();
+}
+
 void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
   ghosts = 0;
   if (offset.empty()) return;
@@ -39,7 +48,9 @@ void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
   // and above their owner, as build()'s carry-over expects.
   std::vector<int> off(n + 1, 0), pa, woff(n + 1, 0), wpart;
   std::vector<uint8_t> img;
-  std::vector<contact::History> xi, wxi;
+  contact::HistoryStore xi;
+  xi.accounts = hist.accounts;
+  std::vector<contact::History> wxi;
   for (size_t k = 0; k < keep.size(); ++k) {
     const int i = keep[k];
     for (int e = offset[i]; e < offset[i + 1]; ++e) {
@@ -47,7 +58,7 @@ void NeighborList::retain(const std::vector<int>& keep, size_t n_added) {
       if (j < 0) continue;
       pa.push_back(j);
       img.push_back(image[e]);
-      xi.push_back(hist[e]);
+      xi.push_back(hist.get(e));
     }
     off[k + 1] = static_cast<int>(pa.size());
     wpart.insert(wpart.end(), wall_part.begin() + wall_offset[i], wall_part.begin() + wall_offset[i + 1]);
@@ -108,7 +119,7 @@ void NeighborList::derive() {
 #pragma omp parallel if (par) reduction(+ : dup)
   {
 #pragma omp for schedule(static) nowait
-    for (long e = 0; e < ne; ++e) live[e] = !hist[e].empty();
+    for (long e = 0; e < ne; ++e) live[e] = !hist.empty(e);
 #pragma omp for schedule(static) nowait
     for (long e = 0; e < ne; ++e) rev_pos[e] = -1;
 #pragma omp for schedule(static)

@@ -82,7 +82,9 @@ struct NeighborList {
   std::vector<int> offset, partner;
   std::vector<uint8_t> image;     // partner image: its position is x[partner] + shift[image]
   std::array<Vec3, 27> shift{};   // image shifts (index 13: none)
-  std::vector<contact::History> hist;  // contact history, in the owner's frame
+  // Contact history, in the owner's frame (xi and, with the energy accounts, the other
+  // slots: contact/history.hpp). set_accounts() chooses whether the other slots are kept.
+  contact::HistoryStore hist;
   // 1 when the pair was in contact at the last force pass (or, after a build or a load,
   // when its history is not empty); 0 implies an empty history. Derived (not saved).
   std::vector<uint8_t> live;
@@ -111,7 +113,8 @@ struct NeighborList {
   // The same for the pair search's per-thread results and the sort of the particles.
   struct Spare {
     std::vector<int> offset, partner, wall_offset, wall_part;
-    std::vector<contact::History> hist, wall_hist;
+    contact::HistoryStore hist;
+    std::vector<contact::History> wall_hist;
     std::vector<std::vector<std::pair<int, int>>> found;  // per thread: (partner, image code)
     Particles::ReorderScratch sort;
   } spare;
@@ -130,6 +133,9 @@ struct NeighborList {
     bool empty() const { return pairs.empty() && walls.empty(); }
   } incoming;
 
+  // Whether the pair histories keep the slots of the energy accounts (true by default):
+  // set before the first build or load; clears the lists' histories when it changes.
+  void set_accounts(bool on);
   // Wraps and sorts `p` (dropping nothing), rebuilds the lists and carries history over
   // (neighbor_build.cpp, in named steps). The result does not depend on the thread count.
   void build(Particles& p, const geometry::Scene::Frame& walls);

@@ -158,18 +158,18 @@ TEST(NeighborLists, RebuildInSpareStorageEqualsAFreshBuild) {
     if (round > 0) {
       ++compared;
       differing += !same_bits(nl.offset, fresh.offset) + !same_bits(nl.partner, fresh.partner) +
-                   !same_bits(nl.image, fresh.image) + !same_bits(nl.hist, fresh.hist) +
+                   !same_bits(nl.image, fresh.image) + !same_bits(nl.hist.records(), fresh.hist.records()) +
                    !same_bits(nl.wall_offset, fresh.wall_offset) + !same_bits(nl.wall_part, fresh.wall_part) +
                    !same_bits(nl.wall_hist, fresh.wall_hist) + !same_bits(p.x, q.x);
     }
     carried_before = carried, carried = 0;
-    for (const contact::History& h : nl.hist) carried += !h.empty();
+    for (const contact::History& h : nl.hist.records()) carried += !h.empty();
     for (const contact::History& h : nl.wall_hist) carried += !h.empty();
     if (round == 5) break;
     // A history of its own for every entry and candidate (live, as the force pass leaves a
     // contact with a history); then every parcel moves.
     for (size_t e = 0; e < nl.hist.size(); ++e) {
-      nl.hist[e] = {{1.0 + e, 2.0, 3.0}, {4.0, 5.0, 6.0 + round}, 7.0, 8.0};
+      nl.hist.set(e, {{1.0 + e, 2.0, 3.0}, {4.0, 5.0, 6.0 + round}, 7.0, 8.0});
       nl.live[e] = 1;
     }
     for (size_t e = 0; e < nl.wall_hist.size(); ++e) nl.wall_hist[e] = {{-1.0 - e, 0, 0}, {}, 1.0, 0};
@@ -250,13 +250,13 @@ TEST(NeighborLists, AnEntryThatIsNotLiveHoldsNoHistory) {
     long live = 0;
     const bool same_lists = nl.builds == builds;
     for (size_t e = 0; e < nl.hist.size(); ++e) {
-      const bool empty = nl.hist[e].empty();
+      const bool empty = nl.hist.empty(e);
       violations += !nl.live[e] && !empty;
       live += nl.live[e];
       if (same_lists) ended += had[e] && empty;
     }
     had.resize(nl.hist.size());
-    for (size_t e = 0; e < nl.hist.size(); ++e) had[e] = !nl.hist[e].empty();
+    for (size_t e = 0; e < nl.hist.size(); ++e) had[e] = !nl.hist.empty(e);
     builds = nl.builds;
     live_max = std::max(live_max, live);
   }

@@ -74,7 +74,7 @@ TEST(Migration, PairHistoriesTravelInTheFrameOfTheLowerId) {
   const geometry::Scene none;
   nl.build(p, none.at(0));
   // Owner-frame histories that differ from their flip, whatever the ids.
-  for (size_t e = 0; e < nl.hist.size(); ++e) nl.hist[e] = test::pair_history(static_cast<int64_t>(e), 1000);
+  for (size_t e = 0; e < nl.hist.size(); ++e) nl.hist.set(e, test::pair_history(static_cast<int64_t>(e), 1000));
   const std::vector<int> dest(p.size(), 0);
   const std::vector<Buffer> b = pack_leaving(p, nl, dest, 1);
   Particles q;
@@ -87,7 +87,7 @@ TEST(Migration, PairHistoriesTravelInTheFrameOfTheLowerId) {
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int64_t a = p.id[i], b2 = p.id[nl.partner[e]];
       const auto it = carried.find({std::min(a, b2), std::max(a, b2)});
-      const contact::History want = a < b2 ? nl.hist[e] : nl.hist[e].flipped();
+      const contact::History want = a < b2 ? nl.hist.get(e) : nl.hist.get(e).flipped();
       if (it == carried.end() || !same_bits(it->second, want)) ++wrong;
       (a < b2 ? as_is : flipped)++;
     }
@@ -119,10 +119,10 @@ TEST(Migration, BuildAttachesACarriedPairInItsOwnersFrame) {
     const contact::History want = owner_is_5 ? h : h.flipped();
     const int i5 = owner_is_5 ? 0 : 1, i9 = 1 - i5;
     ASSERT_EQ(nl.wall_offset[i5 + 1] - nl.wall_offset[i5], 1);
-    const bool pair_ok = same_bits(nl.hist[0], want), wall_ok = same_bits(nl.wall_hist[nl.wall_offset[i5]], hw);
+    const bool pair_ok = same_bits(nl.hist.get(0), want), wall_ok = same_bits(nl.wall_hist[nl.wall_offset[i5]], hw);
     const bool other_wall_empty = nl.wall_hist[nl.wall_offset[i9]].empty();
     std::printf("[ attach ] owner id %lld: pair history %s (xi.x %.3e, carried %.3e), wall %s; incoming left %zu\n",
-                static_cast<long long>(p.id[0]), pair_ok ? "equal" : "DIFFERS", nl.hist[0].xi.x, h.xi.x,
+                static_cast<long long>(p.id[0]), pair_ok ? "equal" : "DIFFERS", nl.hist.xi[0].x, h.xi.x,
                 wall_ok ? "equal" : "DIFFERS", nl.incoming.pairs.size() + nl.incoming.walls.size());
     EXPECT_EQ(owner_is_5, !high_id_first);
     EXPECT_TRUE(pair_ok);

@@ -64,7 +64,7 @@ inline contact::History wall_history(int64_t id) { return pair_history(id, -1); 
 
 // The history of list entry e, in the frame of the pair's particle of lower id.
 inline contact::History lower_id_frame(const Particles& p, const NeighborList& nl, int owner, int e) {
-  return p.id[owner] < p.id[nl.partner[e]] ? nl.hist[e] : nl.hist[e].flipped();
+  return p.id[owner] < p.id[nl.partner[e]] ? nl.hist.get(e) : nl.hist.get(e).flipped();
 }
 
 // Gives every pair of the lists pair_history() of its ids and every wall candidate
@@ -73,7 +73,7 @@ inline void set_histories(const Particles& p, NeighborList& nl) {
   for (int i = 0; i + 1 < static_cast<int>(nl.offset.size()); ++i) {
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int64_t a = p.id[i], b = p.id[nl.partner[e]];
-      nl.hist[e] = a < b ? pair_history(a, b) : pair_history(b, a).flipped();
+      nl.hist.set(e, a < b ? pair_history(a, b) : pair_history(b, a).flipped());
     }
     for (int e = nl.wall_offset[i]; e < nl.wall_offset[i + 1]; ++e) nl.wall_hist[e] = wall_history(p.id[i]);
   }

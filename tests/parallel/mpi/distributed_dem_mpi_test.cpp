@@ -165,8 +165,8 @@ std::vector<SplitRecord> gathered_split_pairs(const DemSolver& dem) {
     for (int e = nl.offset[i]; e < nl.offset[i + 1]; ++e) {
       const int j = nl.partner[e];
       if (static_cast<size_t>(j) < n) continue;
-      mine.push_back(p.id[i] < p.id[j] ? SplitRecord{p.id[i], p.id[j], nl.hist[e]}
-                                       : SplitRecord{p.id[j], p.id[i], nl.hist[e].flipped()});
+      mine.push_back(p.id[i] < p.id[j] ? SplitRecord{p.id[i], p.id[j], nl.hist.get(e)}
+                                       : SplitRecord{p.id[j], p.id[i], nl.hist.get(e).flipped()});
     }
   const int size = world_size();
   const int bytes = static_cast<int>(mine.size() * sizeof(SplitRecord));
@@ -301,10 +301,10 @@ TEST(DistributedDem, MatchesTheSingleProcessRun) {
     for (size_t i = 0; i < p.size(); ++i) fields_differ += test::bytes_of(p, i) != test::bytes_of(r, i);
     const NeighborList &nl = dist.neighbor_list(), &nr = ref.neighbor_list();
     const bool lists_equal = same_vector(nl.offset, nr.offset) && same_vector(nl.partner, nr.partner) &&
-                             same_vector(nl.hist, nr.hist) && same_vector(nl.wall_offset, nr.wall_offset) &&
+                             same_vector(nl.hist.records(), nr.hist.records()) && same_vector(nl.wall_offset, nr.wall_offset) &&
                              same_vector(nl.wall_part, nr.wall_part) && same_vector(nl.wall_hist, nr.wall_hist);
     long live_hist = 0;
-    for (const auto& h : nr.hist) live_hist += !h.empty();
+    for (const auto& h : nr.hist.records()) live_hist += !h.empty();
     const EnergyBudget e1 = dist.energy();
     std::printf("[ distributed ] 1 rank: parcels with a differing field %ld, lists and histories %s (%ld pair "
                 "histories not empty), energy() %s, global_energy() %s\n",
