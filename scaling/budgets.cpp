@@ -91,6 +91,15 @@ Budget read_budget(const std::string& path, const std::string& label, double rat
     for (double& v : b.q["e_rot_orig"]) v /= ratio * ratio;
   }
   b.q["e_pot"] = per_mass("E_pot", true);
+  // A run without the energy accounts (output.energy_accounts = false) wrote nan there: its
+  // budget cannot be compared, and nan would pass through every deviation silently.
+  for (const char* name : {"E_diss_damping", "E_diss_friction", "W_walls", "E_balance"})
+    for (double v : c.col(name))
+      if (std::isnan(v))
+        throw Error(fmt::format("{}: column {} holds nan: the run was made with output.energy_accounts = false, "
+                                "which does not compute the dissipation, the wall work or the balance; run it with "
+                                "the accounts to compare its energy budget",
+                                path, name));
   b.q["e_damp"] = per_mass("E_diss_damping", true);
   b.q["e_fric"] = per_mass("E_diss_friction", true);
   b.q["w_walls"] = per_mass("W_walls", true);

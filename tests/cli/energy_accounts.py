@@ -11,9 +11,12 @@ a checkpoint every 2 ms.
     printed digit;
   * restarting the run without the accounts from its checkpoint with them switched on stops
     with an error that names output.energy_accounts; with the same setting it continues to
-    10 ms, the new rows again with nan where nothing was computed.
+    10 ms, the new rows again with nan where nothing was computed;
+  * with --mpiexec, tests/cli/mpi_bed.toml on 2 ranks to 10 ms both ways (pairs split
+    between ranks, migration, ghosts): again the same text in every other column.
 
     energy_accounts.py --cgdem BUILD/cgdem --case tests/cli/base.toml --work DIR
+                       [--mpiexec MPIEXEC --mpi_case tests/cli/mpi_bed.toml]
 """
 import os
 import shutil
@@ -29,7 +32,7 @@ NOT_COMPUTED = ["E_diss_damping_J", "E_diss_friction_J", "W_walls_J", "E_balance
 
 
 def main():
-    a = parse_args("case", "work")
+    a = parse_args("case", "work", mpiexec="", mpi_case="")
     shutil.rmtree(a.work, ignore_errors=True)
     os.makedirs(a.work)
     failures = []
@@ -80,12 +83,17 @@ def main():
         keep = [k for k, n in enumerate(names) if n not in NOT_COMPUTED]
         return [names[k] for k in keep], [[r.split(",")[k] for k in keep] for r in body[1:]]
 
-    names_on, rows_on = rows(lon)
-    names_off, rows_off = rows(loff)
-    differing = sum(x != y for r1, r2 in zip(rows_on, rows_off) for x, y in zip(r1, r2))
-    print(f"the other {len(names_on)} columns, {len(rows_on)} rows: {differing} values differ as text (tol 0)")
-    if names_on != names_off or len(rows_on) != len(rows_off) or differing:
-        failures.append(f"the runs with and without the accounts differ in {differing} values of the other columns")
+    def compare_other_columns(lines_on, lines_off, what):
+        names_on, rows_on = rows(lines_on)
+        names_off, rows_off = rows(lines_off)
+        differing = sum(x != y for r1, r2 in zip(rows_on, rows_off) for x, y in zip(r1, r2))
+        print(f"{what}: the other {len(names_on)} columns, {len(rows_on)} rows: {differing} values differ as text "
+              f"(tol 0)")
+        if names_on != names_off or len(rows_on) != len(rows_off) or differing:
+            failures.append(f"{what}: the runs with and without the accounts differ in {differing} values of the "
+                            "other columns")
+
+    compare_other_columns(lon, loff, "one process")
 
     # Restarts.
     ckpt = os.path.join(off, "checkpoint.bin")
@@ -102,6 +110,19 @@ def main():
         print(f"restart with the same setting: {len(d2)} rows to t = {d2['t_s'].iloc[-1]:g} s")
         if not (d2["t_s"].iloc[-1] > 2.9e-3 and all(d2[c].isna().all() for c in NOT_COMPUTED)):
             failures.append("the continued run did not reach 10 ms with nan in the columns not computed")
+    if a.mpiexec:
+        folders = []
+        for accounts in (True, False):
+            folder = os.path.join(a.work, f"mpi_{'on' if accounts else 'off'}")
+            r = subprocess.run([a.mpiexec, "--allow-run-as-root", "--oversubscribe", "-np", "2", a.cgdem, "run",
+                                a.mpi_case, "--output", folder, "--set", "time.end=10e-3", "--set",
+                                f"output.energy_accounts={'true' if accounts else 'false'}"],
+                               capture_output=True, text=True)
+            if r.returncode != 0:
+                failures.append(f"2 ranks, output.energy_accounts = {accounts}: failed\n{r.stdout}\n{r.stderr}")
+                return verdict(failures)
+            folders.append(folder)
+        compare_other_columns(table(folders[0])[0], table(folders[1])[0], "2 MPI ranks")
     return verdict(failures)
 
 

@@ -83,5 +83,20 @@ TEST(ScalingBudget, MissingColumnIsNamed) {
   }
 }
 
+// A run made without the energy accounts (nan in its dissipation columns) is refused by name.
+TEST(ScalingBudget, RunWithoutTheAccountsIsRefused) {
+  const fs::path p = fs::path(CGDEM_BINARY_DIR) / "scaling_test_out" / "no_accounts.csv";
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << "t,E_kin_trans,E_kin_rot,E_pot,E_elastic,E_diss_damping,E_diss_friction,W_walls,E_balance,px,py,"
+                      "pz,mass\n0,1,0,1,0,nan,nan,nan,nan,0,0,0,1\n0.1,1,0,1,0,nan,nan,nan,nan,0,0,0,1\n";
+  try {
+    read_budget(p.string(), "x", 1);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    std::printf("[ scaling ] %s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("output.energy_accounts = false"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace cgdem::scaling
