@@ -141,7 +141,9 @@ class ParticleRun final : public run::Run {
 };
 
 bool ParticleRun::set_up() {
-  write_config();
+  const bool restart = !info_.restart.empty();
+  // A restart that the checkpoint refuses leaves the folder's configuration as it was.
+  if (!restart) write_config();
   Stopwatch setup_clock;
   const std::string case_dir = fs::path(info_.case_file).parent_path().string();
   std::unique_ptr<DemSolver> dem;
@@ -149,9 +151,9 @@ bool ParticleRun::set_up() {
   std::optional<run::AirSpec> air;
   if (air_.enabled) air = run::AirSpec{air_.grid, air_.fluid, air_.coupled, air_.exchange, air_.mpi_preconditioner};
   s_ = std::make_unique<run::ParticleStepper>(domain_, std::move(dem), std::move(air));
-  const bool restart = !info_.restart.empty();
   if (restart) {
     restore();
+    write_config();
   } else {
     s_->place_parcels();
     s_->make_air();
@@ -195,11 +197,20 @@ void ParticleRun::restore() {
                  info_.restart, fmt::join(changed_lines(from->config(), info_.resolved_config), " | "));
   }
   // The accounts are totals since the start: a run that did not keep them cannot take them
-  // up halfway, and energy.csv keeps one meaning per column.
-  if (const bool before = energy_accounts_in(from->config()); before != c_.dem.accounts)
-    throw Error(fmt::format("restart: {} was written with output.energy_accounts = {}, the case now says {}; "
-                            "continue with the same setting, or start again from the beginning",
-                            info_.restart, before, c_.dem.accounts));
+  // up halfway. A run that kept them may drop them (a production run from a settled state),
+  // but not into an energy.csv whose header says that its columns were computed.
+  if (const bool before = energy_accounts_in(from->config()); before != c_.dem.accounts) {
+    if (!before)
+      throw Error(fmt::format("restart: {} was written with output.energy_accounts = false: the energy books are "
+                              "totals since the start and cannot be taken up halfway; continue without them, or "
+                              "start again from the beginning",
+                              info_.restart));
+    if (fs::exists(path("energy.csv")))
+      throw Error(fmt::format("restart: {} was written with the energy accounts, and output.energy_accounts = false "
+                              "would continue {}, whose columns say that they were computed; restart into another "
+                              "output folder (--output), or keep the accounts",
+                              info_.restart, path("energy.csv")));
+  }
   from->restore(*s_, [&](io::ArchiveReader& r) { RunOutputs::load_observers(r, diag_, counters_); });
   written_on_ = from->ranks();
   // The checkpoint's neighbour lists are complete for the skin they were built with. A case

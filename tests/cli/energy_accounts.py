@@ -12,6 +12,10 @@ a checkpoint every 2 ms.
   * restarting the run without the accounts from its checkpoint with them switched on stops
     with an error that names output.energy_accounts; with the same setting it continues to
     10 ms, the new rows again with nan where nothing was computed;
+  * the run with the accounts, restarted without them, stops when it would continue its own
+    energy.csv (whose header says computed), leaving the folder's configuration as it was,
+    and goes on into another output folder, whose
+    energy.csv is new, says NOT COMPUTED and holds nan from the restart on;
   * with --mpiexec, tests/cli/mpi_bed.toml on 2 ranks to 10 ms both ways (pairs split
     between ranks, migration, ghosts): again the same text in every other column.
 
@@ -110,6 +114,31 @@ def main():
         print(f"restart with the same setting: {len(d2)} rows to t = {d2['t_s'].iloc[-1]:g} s")
         if not (d2["t_s"].iloc[-1] > 2.9e-3 and all(d2[c].isna().all() for c in NOT_COMPUTED)):
             failures.append("the continued run did not reach 10 ms with nan in the columns not computed")
+    ckpt_on = os.path.join(on, "checkpoint.bin")
+    with open(os.path.join(on, "config.resolved.toml")) as f:
+        config_before = f.read()
+    r = run(on, False, "--restart", ckpt_on, "--set", "time.end=10e-3")
+    with open(os.path.join(on, "config.resolved.toml")) as f:
+        if f.read() != config_before:
+            failures.append("the refused restart rewrote the folder's config.resolved.toml")
+    print(f"restart with -> without the accounts, same folder: exit {r.returncode}; "
+          f"{r.stderr.strip().splitlines()[-1:]}")
+    if r.returncode == 0 or "another output folder" not in r.stderr:
+        failures.append("restarting a run with the accounts without them into its own folder did not stop with an "
+                        "error")
+    other = os.path.join(a.work, "on_then_off")
+    r = run(other, False, "--restart", ckpt_on, "--set", "time.end=10e-3")
+    if r.returncode != 0:
+        failures.append(f"restart with -> without the accounts into another folder failed:\n{r.stdout}\n{r.stderr}")
+    else:
+        lines3, d3, _ = table(other)
+        print(f"restart with -> without the accounts, another folder: {len(d3)} rows from t = {d3['t_s'].iloc[0]:g} "
+              f"to {d3['t_s'].iloc[-1]:g} s")
+        says = any(l.startswith("# E_diss_damping_J: ") and "NOT COMPUTED" in l for l in lines3)
+        if not (says and all(d3[c].isna().all() for c in NOT_COMPUTED) and d3["t_s"].iloc[-1] > 9.9e-3):
+            failures.append("the run restarted without the accounts into another folder does not say NOT COMPUTED "
+                            "with nan in every row, or did not reach 10 ms")
+
     if a.mpiexec:
         folders = []
         for accounts in (True, False):
