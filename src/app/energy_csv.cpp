@@ -2,12 +2,20 @@
 
 #include <fmt/format.h>
 
+#include <string>
+#include <vector>
+
 namespace cgdem::app {
 
+namespace {
+
+// The columns that need the accounts.
 bool needs_accounts(const std::string& column) {
   return column == "E_diss_damping_J" || column == "E_diss_friction_J" || column == "W_walls_J" ||
          column == "E_balance_J";
 }
+
+}  // namespace
 
 io::CsvColumns energy_csv_columns(bool accounts) {
   io::CsvColumns columns = {
@@ -37,6 +45,15 @@ io::CsvColumns energy_csv_columns(bool accounts) {
         c.description = "NOT COMPUTED in this run (output.energy_accounts = false; every row holds nan): " +
                         c.description;
   return columns;
+}
+
+std::string energy_csv_accounts_note() {
+  std::vector<std::string> names;
+  for (const io::CsvColumn& c : energy_csv_columns())
+    if (needs_accounts(c.name)) names.push_back(c.name);
+  return fmt::format("output.energy_accounts = false: the contact energy accounts were not kept, so {} are not "
+                     "computed (nan)",
+                     fmt::join(names, ", "));
 }
 
 std::string energy_csv_row(double t, const EnergyBudget& e, long particles, long removed, long inside_walls) {

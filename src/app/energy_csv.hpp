@@ -16,8 +16,8 @@ namespace cgdem::app {
 // accounts (output.energy_accounts = false) the columns they feed say that they were not
 // computed (their rows hold nan).
 io::CsvColumns energy_csv_columns(bool accounts = true);
-// The columns that need the accounts.
-bool needs_accounts(const std::string& column);
+// The header line of an energy.csv written without the accounts: the columns it did not compute.
+std::string energy_csv_accounts_note();
 
 // One row (no trailing newline) of the totals over the ranks (one process: its own).
 // `e` must already carry work_fluid (DemSolver::fluid_work()).

@@ -15,6 +15,7 @@
 #include "app/run_checks.hpp"
 #include "app/run_outputs.hpp"
 #include "app/run_schedule.hpp"
+#include "core/config.hpp"
 #include "core/error.hpp"
 #include "core/revision.hpp"
 #include "core/timers.hpp"
@@ -46,14 +47,9 @@ std::vector<std::string> changed_lines(const std::string& stored, const std::str
 
 // output.energy_accounts of a resolved configuration (true when it does not say).
 bool energy_accounts_in(const std::string& config) {
-  std::istringstream in(config);
-  bool output = false;
-  for (std::string l; std::getline(in, l);) {
-    if (l.starts_with("[")) output = l == "[output]";
-    if (output && l.starts_with("energy_accounts") && l.find('=') != std::string::npos)
-      return l.find("false", l.find('=')) == std::string::npos;
-  }
-  return true;
+  Config cfg = Config::from_string(config, "the checkpoint's configuration");
+  const std::optional<Section> output = cfg.root().optional_section("output");
+  return !output || output->boolean_or("energy_accounts", true);
 }
 
 // The lines of the tables [particles], [particles.*] and [[particles.*]] of a resolved

@@ -70,12 +70,8 @@ RunOutputs::RunOutputs(run::ParticleStepper& s, const DemCase& c, const Diagnost
     if (s_.with_air())
       air_snapshots_ =
           std::make_unique<io::GridSnapshotSeries>(dir, "air", attrs_, ctx_.restart, c_.output.compression);
-    if (c_.dem.accounts)
-      energy_ = open_csv("energy.csv", energy_csv_columns());
-    else
-      energy_ = open_csv("energy.csv", energy_csv_columns(false),
-                         {"output.energy_accounts = false: the contact energy accounts were not kept, so "
-                          "E_diss_damping_J, E_diss_friction_J, W_walls_J and E_balance_J are not computed (nan)"});
+    energy_ = open_csv("energy.csv", energy_csv_columns(c_.dem.accounts),
+                       c_.dem.accounts ? std::vector<std::string>{} : std::vector{energy_csv_accounts_note()});
     if (spec_.enabled) diag_csv_ = open_csv("diagnostics.csv", diag_.csv_columns(), {ctx_.diagnostics_note});
     if (spec_.enabled) surface_csv_ = open_csv("shoe_surface.csv", diag_.surface_columns());
     if (s_.with_air()) air_csv_ = open_csv("air_steps.csv", air_steps_columns());
