@@ -257,15 +257,18 @@ void Exchange::porosity_source(const VoidFields& now, const fluid::Field& mix_ol
       }
 }
 
-std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState& air) const {
-  fluid::Field pg = air.p;
+const std::array<fluid::Field, 3>& Exchange::pressure_gradient(const fluid::FluidState& air) const {
+  fluid::Field& pg = grad_scratch_.p;
+  pg = air.p;  // the storage is reused once it has the grid's size
   if (sync_)
     sync_->fill_scalar(pg, fluid::ScalarKind::Pressure);
   else
     fluid::fill_scalar_ghosts(g_, params_.bc, pg, fluid::ScalarKind::Pressure);
-  std::array<fluid::Field, 3> grad;
+  std::array<fluid::Field, 3>& grad = grad_scratch_.grad;
   for (int d = 0; d < 3; ++d) {
-    grad[d] = fluid::make_face_field(g_, d);
+    // Made once: the faces the loop below leaves alone (the outermost layer along d) keep
+    // the zeros they were made with.
+    if (grad[d].empty()) grad[d] = fluid::make_face_field(g_, d);
     const auto e = grad[d].extent();
     const auto u = fluid::unit(d);
     // Every face whose two cells exist, ghost layers included: on a block over MPI ranks
@@ -273,10 +276,12 @@ std::array<fluid::Field, 3> Exchange::pressure_gradient(const fluid::FluidState&
     const int g = fluid::kGhost;
     std::array<int, 3> lo{-g, -g, -g}, hi{e[0] + g, e[1] + g, e[2] + g};
     lo[d] = -g + 1, hi[d] = e[d] + g - 1;
+    fluid::Field& gd = grad[d];
+    const long faces = static_cast<long>(hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+#pragma omp parallel for schedule(static) if (faces > fluid::kOmpMinWork)
     for (int k = lo[2]; k < hi[2]; ++k)
       for (int j = lo[1]; j < hi[1]; ++j)
-        for (int i = lo[0]; i < hi[0]; ++i)
-          grad[d](i, j, k) = (pg(i, j, k) - pg(i - u[0], j - u[1], k - u[2])) / g_.dx;
+        for (int i = lo[0]; i < hi[0]; ++i) gd(i, j, k) = (pg(i, j, k) - pg(i - u[0], j - u[1], k - u[2])) / g_.dx;
   }
   return grad;
 }
@@ -294,7 +299,7 @@ Exchange::AirSample Exchange::sample(const fluid::FluidState& air, const std::ar
 }
 
 void Exchange::air_to_parcels(const fluid::FluidState& air, const ParcelWeights& w, Particles& p) const {
-  const auto grad = pressure_gradient(air);
+  const auto& grad = pressure_gradient(air);
   const int n = static_cast<int>(w.size());
 #pragma omp parallel for schedule(static) if (n >= 2048)
   for (int i = 0; i < n; ++i) {

@@ -201,8 +201,9 @@ class Exchange {
     double eps;
     Vec3 u, grad_p;
   };
-  // Face gradients of the pressure (domain ghosts from the boundary conditions).
-  std::array<fluid::Field, 3> pressure_gradient(const fluid::FluidState& air) const;
+  // Face gradients of the pressure (domain ghosts from the boundary conditions), into
+  // grad_scratch_ (valid until the next call).
+  const std::array<fluid::Field, 3>& pressure_gradient(const fluid::FluidState& air) const;
   AirSample sample(const fluid::FluidState& air, const std::array<fluid::Field, 3>& grad, const ParcelWeights& w,
                    size_t i) const;
   // K, Kv of src from coef(i) = (c_i/dx^3, c_i vbar_i/dx^3) per parcel: deposited serially in
@@ -269,6 +270,13 @@ class Exchange {
     std::vector<int> count;
   };
   mutable VoidScratch scratch_;
+  // The pressure with its ghosts and its face gradients (pressure_gradient()), kept from
+  // call to call for the same reason: twice per fluid step, four fields of the grid's size.
+  struct GradScratch {
+    fluid::Field p;
+    std::array<fluid::Field, 3> grad;
+  };
+  mutable GradScratch grad_scratch_;
   const fluid::IbmFractions* walls_ = nullptr;
   const geometry::Scene::Frame* frame_ = nullptr;
   const VoidFields* void_fields_ = nullptr;
