@@ -7,7 +7,7 @@ namespace cgdem::fluid {
 namespace {
 
 // Lines below this stay on one thread (a parallel region costs a few microseconds; the 140 x
-// 70 x 50 air grid has 3,800-10,000 lines per axis).
+// 70 x 50 air grid has 4,000-10,700 lines per axis).
 constexpr long kMinParallelLines = 2048;
 
 const char* side_name(int s) {
